@@ -1,0 +1,297 @@
+"""Per-room-type category sets of the paper's appendix table, with what the rest of the
+package needs to know about each category.
+
+Counts come from Table 'category_counts' of Ritchie et al. (CVPR 2019); the number of rooms
+per type from section 4 of the paper. Doors and windows are architecture: they come with the
+room layout, so they are kept apart (``ARCHITECTURE_COUNTS``) and are not categories here.
+
+Sizes follow the package convention (see ``scene.PlacedObject``): ``width`` across the
+object's front (local y), ``depth`` from back to front (local x, the front faces +x), and
+``height``, all in metres.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import lru_cache
+import math
+
+ROOM_TYPES = ('bedroom', 'living', 'office', 'bathroom')
+
+# Rooms per type after the paper's filtering (section 4).
+ROOMS_IN_TABLE = {'bedroom': 6300, 'living': 1400, 'office': 1200, 'bathroom': 6800}
+
+# Side of the square area, in metres, that a top-down image of each room type covers. A room
+# whose floor does not fit in this square cannot be rendered and is rejected on input; at
+# 64 px this is 9.4 cm (bedroom), 12.5 cm (living), 10.9 cm (office), 7.8 cm (bathroom) a pixel.
+ROOM_SIZE_CAP = {'bedroom': 6.0, 'living': 8.0, 'office': 7.0, 'bathroom': 5.0}
+
+# Doors and windows per room type, from the same table (architecture, not furniture).
+ARCHITECTURE_COUNTS = {
+    'bedroom': {'door': 8335, 'window': 7104},
+    'living': {'door': 2286, 'window': 1789},
+    'office': {'door': 1572, 'window': 1307},
+    'bathroom': {'door': 7448, 'window': 4299},
+}
+
+# Object counts per room type, as printed in the paper (doors and windows removed).
+TABLE_COUNTS = {
+    'bedroom': {
+        'wardrobe': 6690, 'stand': 6508, 'double bed': 4230, 'table lamp': 2844, 'desk': 2586,
+        'dresser': 2222, 'office chair': 2077, 'single bed': 2032, 'dressing table': 1730,
+        'tv stand': 1432, 'floor lamp': 1387, 'plant': 1341, 'television': 1252,
+        'ottoman': 1142, 'coffee table': 1048, 'laptop': 1010, 'shelving': 901, 'book': 858,
+        'sofa chair': 727, 'armchair': 703, 'shoes cabinet': 619, 'straight chair': 595,
+        'bunker bed': 593, 'hanger': 540, 'loudspeaker': 438, 'vase': 395, 'sofa': 393,
+        'console': 368, 'pedestal fan': 320, 'baby bed': 266, 'toy': 231, 'daybed': 181,
+        'stool': 178, 'bench chair': 134, 'whiteboard': 105, 'piano': 102, 'chair': 98,
+        'fishbowl': 59,
+    },
+    'living': {
+        'sofa': 1661, 'coffee table': 1336, 'plant': 1059, 'sofa chair': 983, 'tv stand': 696,
+        'floor lamp': 651, 'television': 447, 'loudspeaker': 384, 'ottoman': 314,
+        'shelving': 309, 'vase': 282, 'fireplace': 257, 'armchair': 204, 'console': 187,
+        'wardrobe': 172, 'stand': 101, 'piano': 85, 'laptop': 72, 'book': 69,
+        'table lamp': 68, 'dresser': 64, 'cup': 59, 'toy': 56, 'straight chair': 51,
+        'pedestal fan': 40, 'hanger': 34, 'stool': 33, 'shoes cabinet': 31, 'bench chair': 26,
+        'fishbowl': 21, 'fruit bowl': 17, 'glass': 16, 'bottle': 15,
+    },
+    'office': {
+        'desk': 1616, 'office chair': 1577, 'shelving': 764, 'plant': 557, 'laptop': 377,
+        'book': 356, 'wardrobe': 319, 'sofa': 313, 'armchair': 300, 'table lamp': 297,
+        'sofa chair': 290, 'straight chair': 274, 'floor lamp': 256, 'tv stand': 137,
+        'coffee table': 137, 'vase': 132, 'loudspeaker': 113, 'ottoman': 112, 'stand': 102,
+        'whiteboard': 100, 'dresser': 84, 'television': 84, 'piano': 75, 'stool': 56,
+        'toy': 52, 'hanger': 51, 'pedestal fan': 49, 'shoes cabinet': 39, 'fireplace': 38,
+        'bench chair': 37, 'water machine': 32, 'console': 30, 'cup': 27, 'fishbowl': 5,
+    },
+    'bathroom': {
+        'toilet': 6437, 'bathtub': 5441, 'shower': 5308, 'sink': 4627, 'shelving': 3963,
+        'bidet': 1753, 'washer': 1428, 'plant': 1045, 'wardrobe': 459, 'trash can': 409,
+        'stand': 315, 'floor lamp': 231, 'toy': 126, 'hanger': 111, 'ottoman': 95,
+        'dresser': 89, 'cabinet': 57, 'vase': 31, 'coffee table': 31, 'straight chair': 20,
+    },
+}
+
+
+@dataclass(frozen=True)
+class CategoryInfo:
+    """What is known about one category, whatever the room type."""
+
+    name: str
+    tier: str                                    # 'first' (on the floor) or 'second'
+    width: tuple[float, float]                   # (min, max) across the front, metres
+    depth: tuple[float, float]                   # (min, max) back to front, metres
+    height: tuple[float, float]                  # (min, max), metres
+    supported_by: tuple[str, ...] = ()           # second tier: first-tier parents
+    against_wall: bool = False                   # back normally touches a wall
+    description: str = ''
+
+    @property
+    def mean_footprint(self) -> float:
+        """Mean footprint area in m^2 of a size drawn uniformly from the ranges."""
+        return (sum(self.width) / 2.0) * (sum(self.depth) / 2.0)
+
+    def size_is_plausible(self, width: float, depth: float, height: float,
+                          slack: float = 0.5) -> bool:
+        """Whether a size is within the ranges widened by ``slack`` (a fraction)."""
+        for value, (lo, hi) in ((width, self.width), (depth, self.depth),
+                                (height, self.height)):
+            if not (lo * (1.0 - slack) <= value <= hi * (1.0 + slack)):
+                return False
+        return True
+
+
+_SURFACES_LAMP = ('stand', 'desk', 'dresser', 'dressing table', 'shoes cabinet', 'tv stand')
+_SURFACES_DECOR = ('stand', 'desk', 'dresser', 'dressing table', 'tv stand', 'coffee table',
+                   'shelving', 'shoes cabinet', 'fireplace', 'sink', 'washer', 'cabinet')
+_SURFACES_TABLEWARE = ('coffee table', 'desk', 'tv stand', 'dresser', 'stand')
+_BEDS = ('double bed', 'single bed', 'bunker bed', 'daybed')
+
+
+def _c(name, tier, width, depth, height, supported_by=(), against_wall=False, description=''):
+    return CategoryInfo(name, tier, width, depth, height, tuple(supported_by), against_wall,
+                        description)
+
+
+CATEGORIES: dict[str, CategoryInfo] = {c.name: c for c in (
+    # first tier: stands on the floor
+    _c('wardrobe', 'first', (0.8, 2.2), (0.5, 0.65), (1.8, 2.3), against_wall=True,
+       description='clothes wardrobe, doors at the front'),
+    _c('stand', 'first', (0.4, 0.6), (0.35, 0.5), (0.45, 0.65), against_wall=True,
+       description='nightstand / small side cabinet'),
+    _c('double bed', 'first', (1.4, 2.0), (1.95, 2.2), (0.8, 1.2), against_wall=True,
+       description='double bed, headboard at the back, foot at the front'),
+    _c('single bed', 'first', (0.9, 1.2), (1.9, 2.1), (0.6, 1.0), against_wall=True),
+    _c('bunker bed', 'first', (0.9, 1.2), (1.95, 2.1), (1.5, 1.8), against_wall=True,
+       description='bunk bed with two decks and a ladder'),
+    _c('baby bed', 'first', (0.65, 0.8), (1.2, 1.45), (0.85, 1.05), against_wall=True,
+       description='cot with barred sides'),
+    _c('daybed', 'first', (1.95, 2.1), (0.9, 1.1), (0.7, 0.95), against_wall=True,
+       description='daybed, long side against the wall'),
+    _c('desk', 'first', (1.0, 1.8), (0.55, 0.8), (0.72, 0.78), against_wall=True),
+    _c('dresser', 'first', (0.8, 1.6), (0.42, 0.55), (0.75, 1.2), against_wall=True,
+       description='chest of drawers'),
+    _c('dressing table', 'first', (0.8, 1.3), (0.4, 0.5), (1.2, 1.6), against_wall=True,
+       description='vanity table with a mirror'),
+    _c('tv stand', 'first', (1.0, 2.0), (0.35, 0.5), (0.4, 0.6), against_wall=True),
+    _c('shelving', 'first', (0.6, 1.6), (0.28, 0.4), (0.8, 2.0), against_wall=True,
+       description='open shelves / bookcase'),
+    _c('shoes cabinet', 'first', (0.6, 1.2), (0.25, 0.4), (0.8, 1.2), against_wall=True),
+    _c('office chair', 'first', (0.55, 0.7), (0.55, 0.7), (0.9, 1.25),
+       description='swivel chair on a five-star base'),
+    _c('straight chair', 'first', (0.42, 0.5), (0.45, 0.55), (0.8, 1.0)),
+    _c('chair', 'first', (0.45, 0.6), (0.5, 0.6), (0.8, 1.0)),
+    _c('stool', 'first', (0.35, 0.45), (0.35, 0.45), (0.45, 0.75)),
+    _c('bench chair', 'first', (0.9, 1.5), (0.35, 0.45), (0.42, 0.48),
+       description='bench without a back'),
+    _c('ottoman', 'first', (0.45, 1.0), (0.4, 0.6), (0.38, 0.46)),
+    _c('sofa', 'first', (1.6, 2.6), (0.8, 1.0), (0.75, 0.95), against_wall=True),
+    _c('sofa chair', 'first', (0.7, 0.95), (0.75, 0.95), (0.75, 0.95),
+       description='upholstered club chair'),
+    _c('armchair', 'first', (0.65, 0.85), (0.7, 0.85), (0.8, 1.05)),
+    _c('coffee table', 'first', (0.8, 1.4), (0.45, 0.8), (0.35, 0.48)),
+    _c('floor lamp', 'first', (0.3, 0.5), (0.3, 0.5), (1.4, 1.8)),
+    _c('loudspeaker', 'first', (0.2, 0.35), (0.22, 0.35), (0.8, 1.1)),
+    _c('pedestal fan', 'first', (0.35, 0.5), (0.3, 0.45), (1.0, 1.4)),
+    _c('hanger', 'first', (0.4, 0.9), (0.35, 0.5), (1.6, 1.9),
+       description='coat stand / clothes rack'),
+    _c('whiteboard', 'first', (1.0, 1.8), (0.45, 0.6), (1.6, 1.9),
+       description='whiteboard on a mobile stand'),
+    _c('piano', 'first', (1.4, 1.55), (0.55, 0.65), (1.1, 1.3), against_wall=True,
+       description='upright piano'),
+    _c('fireplace', 'first', (1.0, 1.8), (0.35, 0.6), (1.0, 1.3), against_wall=True),
+    _c('water machine', 'first', (0.3, 0.4), (0.3, 0.4), (0.95, 1.1), against_wall=True,
+       description='water cooler with a bottle on top'),
+    _c('toilet', 'first', (0.36, 0.42), (0.6, 0.75), (0.7, 0.85), against_wall=True),
+    _c('bidet', 'first', (0.36, 0.4), (0.53, 0.6), (0.38, 0.42), against_wall=True),
+    _c('bathtub', 'first', (1.5, 1.8), (0.7, 0.85), (0.5, 0.62), against_wall=True,
+       description='bathtub, long side at the front'),
+    _c('shower', 'first', (0.8, 1.0), (0.8, 1.0), (2.0, 2.1), against_wall=True,
+       description='shower cabin with a tray'),
+    _c('sink', 'first', (0.5, 1.2), (0.42, 0.55), (0.8, 0.9), against_wall=True,
+       description='washbasin on a vanity unit'),
+    _c('washer', 'first', (0.595, 0.6), (0.55, 0.65), (0.82, 0.86), against_wall=True,
+       description='washing machine'),
+    _c('trash can', 'first', (0.22, 0.35), (0.22, 0.35), (0.3, 0.5)),
+    _c('cabinet', 'first', (0.35, 0.6), (0.3, 0.4), (0.8, 1.8), against_wall=True,
+       description='bathroom cabinet'),
+    # second tier: stands on the top surface of a first-tier object
+    _c('table lamp', 'second', (0.2, 0.45), (0.2, 0.45), (0.35, 0.65), _SURFACES_LAMP),
+    _c('plant', 'second', (0.15, 0.4), (0.15, 0.4), (0.25, 0.7), _SURFACES_DECOR,
+       description='potted plant'),
+    _c('television', 'second', (0.8, 1.5), (0.18, 0.3), (0.5, 0.9),
+       ('tv stand', 'dresser', 'desk')),
+    _c('laptop', 'second', (0.3, 0.38), (0.22, 0.26), (0.2, 0.25),
+       ('desk', 'coffee table', 'dressing table', 'stand')),
+    _c('book', 'second', (0.15, 0.3), (0.2, 0.3), (0.03, 0.2),
+       ('desk', 'stand', 'shelving', 'coffee table', 'dresser') + _BEDS[:2],
+       description='a book or a small stack of books'),
+    _c('vase', 'second', (0.1, 0.25), (0.1, 0.25), (0.2, 0.5), _SURFACES_DECOR),
+    _c('console', 'second', (0.25, 0.4), (0.2, 0.3), (0.05, 0.1), ('tv stand', 'desk'),
+       description='game console'),
+    _c('toy', 'second', (0.15, 0.4), (0.15, 0.4), (0.1, 0.35),
+       ('shelving', 'desk', 'stand', 'dresser', 'coffee table', 'bathtub', 'cabinet')
+       + _BEDS),
+    _c('fishbowl', 'second', (0.2, 0.35), (0.2, 0.35), (0.18, 0.3),
+       ('desk', 'dresser', 'shelving', 'tv stand', 'coffee table', 'stand')),
+    _c('cup', 'second', (0.07, 0.1), (0.07, 0.1), (0.08, 0.12), _SURFACES_TABLEWARE),
+    _c('glass', 'second', (0.06, 0.09), (0.06, 0.09), (0.1, 0.16), _SURFACES_TABLEWARE),
+    _c('bottle', 'second', (0.07, 0.1), (0.07, 0.1), (0.25, 0.35), _SURFACES_TABLEWARE),
+    _c('fruit bowl', 'second', (0.2, 0.3), (0.2, 0.3), (0.08, 0.15), _SURFACES_TABLEWARE),
+)}
+
+
+@dataclass(frozen=True)
+class RoomCategorySpec:
+    """One category as it appears in one room type."""
+
+    info: CategoryInfo
+    count: int                    # instances in the paper's table
+    frequency: float              # mean instances per room
+    importance: float             # mean footprint area x frequency (paper, section 4)
+
+    @property
+    def name(self) -> str:
+        return self.info.name
+
+    @property
+    def tier(self) -> str:
+        return self.info.tier
+
+
+@dataclass(frozen=True)
+class RoomTypeSpec:
+    """The category set of one room type, in the table's order."""
+
+    room_type: str
+    rooms: int
+    size_cap: float
+    categories: tuple[RoomCategorySpec, ...] = field(repr=False)
+    doors_per_room: float = 0.0
+    windows_per_room: float = 0.0
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return tuple(c.name for c in self.categories)
+
+    def index(self, name: str) -> int:
+        return self.names.index(name)
+
+    def __getitem__(self, name: str) -> RoomCategorySpec:
+        return self.categories[self.index(name)]
+
+    def __contains__(self, name: str) -> bool:
+        return name in self.names
+
+    @property
+    def mean_objects_per_room(self) -> float:
+        return sum(c.frequency for c in self.categories)
+
+    def distribution(self) -> dict[str, float]:
+        """Category distribution of the table (fractions of all objects)."""
+        total = sum(c.count for c in self.categories)
+        return {c.name: c.count / total for c in self.categories}
+
+    def importance_order(self) -> tuple[str, ...]:
+        """Categories by decreasing importance, the paper's order for the category module."""
+        return tuple(c.name for c in sorted(self.categories, key=lambda c: -c.importance))
+
+    def supports(self, child: str) -> tuple[str, ...]:
+        """First-tier categories of this room type that can hold ``child``."""
+        return tuple(p for p in CATEGORIES[child].supported_by if p in self)
+
+
+def resolve_room_type(name: str) -> str:
+    """Canonical room type for a user-given name ('living room' -> 'living')."""
+    key = name.strip().lower().replace('_', ' ')
+    aliases = {'living room': 'living', 'livingroom': 'living', 'bed room': 'bedroom'}
+    key = aliases.get(key, key)
+    if key not in ROOM_TYPES:
+        raise KeyError(f'unknown room type {name!r}; expected one of {", ".join(ROOM_TYPES)}')
+    return key
+
+
+@lru_cache(maxsize=None)
+def room_spec(room_type: str) -> RoomTypeSpec:
+    room_type = resolve_room_type(room_type)
+    rooms = ROOMS_IN_TABLE[room_type]
+    cats = []
+    for name, count in TABLE_COUNTS[room_type].items():
+        info = CATEGORIES[name]
+        freq = count / rooms
+        cats.append(RoomCategorySpec(info, count, freq, info.mean_footprint * freq))
+    arch = ARCHITECTURE_COUNTS[room_type]
+    return RoomTypeSpec(room_type, rooms, ROOM_SIZE_CAP[room_type], tuple(cats),
+                        arch['door'] / rooms, arch['window'] / rooms)
+
+
+def kl_divergence(p: dict[str, float], q: dict[str, float], eps: float = 1e-6) -> float:
+    """KL(p || q) over the union of keys, both normalised; ``eps`` keeps it finite where q
+    has a zero, as the paper's synthesized-vs-dataset comparison needs."""
+    keys = sorted(set(p) | set(q))
+    ps = [max(p.get(k, 0.0), 0.0) for k in keys]
+    qs = [max(q.get(k, 0.0), 0.0) + eps for k in keys]
+    sp, sq = sum(ps), sum(qs)
+    if sp <= 0:
+        raise ValueError('KL divergence of an empty distribution is undefined')
+    return sum((a / sp) * math.log((a / sp) / (b / sq)) for a, b in zip(ps, qs) if a > 0)

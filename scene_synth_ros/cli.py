@@ -1,0 +1,2 @@
+print("x")
+def main(): print("hi")

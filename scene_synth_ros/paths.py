@@ -1,0 +1,39 @@
+"""Where the package's data files are, in a source checkout and in a colcon install."""
+from __future__ import annotations
+
+from functools import lru_cache
+from pathlib import Path
+import sys
+
+PACKAGE = 'scene_synth_ros'
+_SOURCE_ROOT = Path(__file__).resolve().parent.parent
+
+
+@lru_cache(maxsize=None)
+def share_dir() -> Path:
+    """The directory holding msg_schemas/, config/ and examples/.
+
+    A source checkout (or editable install) has them beside the package; a colcon or pip
+    install has them in ``share/scene_synth_ros`` under its prefix.
+    """
+    if (_SOURCE_ROOT / 'msg_schemas').is_dir() and (_SOURCE_ROOT / 'package.xml').is_file():
+        return _SOURCE_ROOT
+    try:  # ament_index is only there on a ROS install; the library must work without it
+        from ament_index_python.packages import get_package_share_directory
+        return Path(get_package_share_directory(PACKAGE))
+    except Exception:
+        pass
+    candidate = Path(sys.prefix) / 'share' / PACKAGE
+    if (candidate / 'msg_schemas').is_dir():
+        return candidate
+    raise FileNotFoundError(
+        f'cannot find the {PACKAGE} data files (msg_schemas/): looked in {_SOURCE_ROOT}, '
+        f'the ament index and {candidate}')
+
+
+def schema_dir() -> Path:
+    return share_dir() / 'msg_schemas'
+
+
+def examples_dir() -> Path:
+    return share_dir() / 'examples'

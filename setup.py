@@ -1,0 +1,43 @@
+"""ament_python build of scene_synth_ros; also installable with pip for the .venv set-up."""
+from glob import glob
+import os
+
+from setuptools import find_packages, setup
+
+PACKAGE = 'scene_synth_ros'
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def _files(pattern):
+    """Repository-relative files matching pattern, sorted so builds are reproducible."""
+    return sorted(os.path.relpath(p, HERE) for p in glob(os.path.join(HERE, pattern)))
+
+
+setup(
+    name=PACKAGE,
+    version='0.1.0',
+    packages=find_packages(exclude=['tests', 'tests.*', 'benchmarks']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + PACKAGE]),
+        ('share/' + PACKAGE, ['package.xml']),
+        ('share/' + PACKAGE + '/msg_schemas', _files('msg_schemas/*.json')),
+        ('share/' + PACKAGE + '/config', _files('config/*.yaml')),
+        ('share/' + PACKAGE + '/examples', _files('examples/*.json')),
+        ('share/' + PACKAGE + '/weights', _files(PACKAGE + '/weights/*')),
+    ],
+    package_data={PACKAGE: ['weights/*']},
+    # Python dependencies are pinned once, in requirements.txt; colcon users get the
+    # ROS ones from package.xml.
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='scene_synth_ros developers',
+    maintainer_email='dev@scene-synth-ros.invalid',
+    description='Indoor scene synthesis (Ritchie et al., CVPR 2019) as a ROS 2 node.',
+    license='Apache-2.0',
+    tests_require=['pytest'],
+    entry_points={
+        'console_scripts': [
+            'scene-synth = scene_synth_ros.cli:main',
+        ],
+    },
+)
