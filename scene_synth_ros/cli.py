@@ -1,2 +1,272 @@
-print("x")
-def main(): print("hi")
+"""The ``scene-synth`` command line. A thin adapter over the library: no ROS import here."""
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+import sys
+import time
+
+from .categories import ROOM_TYPES, resolve_room_type, room_spec
+
+EXIT_BAD_INPUT = 2
+
+
+class UserError(Exception):
+    """Bad input from the user: printed as one sentence, exit code 2, no traceback."""
+
+
+def _room_types(value: str) -> list[str]:
+    if value == 'all':
+        return list(ROOM_TYPES)
+    try:
+        return [resolve_room_type(value)]
+    except KeyError as e:
+        raise UserError(str(e.args[0])) from None
+
+
+def _load(path: str):
+    from .schema import SceneValidationError, load_scene
+    try:
+        return load_scene(path)
+    except FileNotFoundError:
+        raise UserError(f'{path}: no such file') from None
+    except SceneValidationError as e:
+        raise UserError(f'{path}: {e}') from None
+
+
+# ---- corpus ------------------------------------------------------------------------------
+def cmd_corpus(args) -> int:
+    from tqdm import tqdm
+
+    from .corpus.generate import generate_corpus
+    from .schema import save_scene
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    for rt in _room_types(args.room_type):
+        t0 = time.perf_counter()
+        rooms = generate_corpus(rt, args.n, seed=args.seed, workers=args.workers)
+        for i, scene in enumerate(tqdm(rooms, total=args.n, desc=rt, unit='room',
+                                       disable=args.quiet)):
+            save_scene(scene, out / f'{rt}_{i:05d}.json')
+        if not args.quiet:
+            print(f'{rt}: {args.n} rooms in {time.perf_counter() - t0:.1f} s -> {out}')
+    return 0
+
+
+def cmd_corpus_stats(args) -> int:
+    from .corpus.generate import generate_corpus
+    from .corpus.stats import collect
+    rows = []
+    for rt in _room_types(args.room_type):
+        if args.dir:
+            files = sorted(Path(args.dir).glob(f'{rt}_*.json'))
+            if not files:
+                raise UserError(f'{args.dir}: no {rt}_*.json scene files')
+            scenes = (_load(str(f)) for f in files)
+        else:
+            scenes = generate_corpus(rt, args.n, seed=args.seed, workers=args.workers)
+        stats = collect(rt, scenes)
+        rows.append(stats.summary_row())
+        if args.categories:
+            print(f'\n{rt}: objects per room, corpus vs. the paper\'s table')
+            for name, here, table in stats.category_table():
+                print(f'  {name:16s} {here:7.3f} {table:7.3f}')
+    print()
+    print(f'{"room type":10s} {"rooms":>6s} {"KL(c||t)":>9s} {"KL(t||c)":>9s} '
+          f'{"obj/room":>9s} {"table":>6s} {"diff":>7s} {"doors":>6s} {"table":>6s} '
+          f'{"windows":>7s} {"table":>6s} {"L-shaped":>8s} {"invalid":>7s}')
+    for r in rows:
+        diff = r['objects_per_room'] / r['table_objects_per_room'] - 1
+        print(f'{r["room_type"]:10s} {r["rooms"]:6d} {r["kl_corpus_table"]:9.4f} '
+              f'{r["kl_table_corpus"]:9.4f} {r["objects_per_room"]:9.2f} '
+              f'{r["table_objects_per_room"]:6.2f} {diff:+7.1%} {r["doors_per_room"]:6.2f} '
+              f'{r["table_doors_per_room"]:6.2f} {r["windows_per_room"]:7.2f} '
+              f'{r["table_windows_per_room"]:6.2f} {r["l_shaped_fraction"]:8.1%} '
+              f'{r["invalid_rooms"]:7d}')
+    if args.json:
+        Path(args.json).write_text(json.dumps(rows, indent=1) + '\n')
+    return 0
+
+
+def cmd_corpus_calibrate(args) -> int:
+    from .corpus.calibrate import calibrate
+    calibrate(rooms=args.rooms, iterations=args.iterations, seed=args.seed,
+              room_types=_room_types(args.room_type), workers=args.workers)
+    return 0
+
+
+# ---- pictures ----------------------------------------------------------------------------
+def cmd_render(args) -> int:
+    scene = _load(args.scene)
+    if not (args.png or args.channels):
+        raise UserError('render needs --png and/or --channels to know what to write')
+    if args.png:
+        from .plot import save_png
+        save_png(scene, args.png, title=args.title or Path(args.scene).stem)
+        print(f'wrote {args.png}')
+    if args.channels:
+        import numpy as np
+
+        from .render import TopDownRenderer
+        try:
+            image = TopDownRenderer(args.resolution).render(scene)
+        except ValueError as e:
+            raise UserError(f'{args.scene}: {e}') from None
+        np.save(args.channels, image)
+        print(f'wrote {args.channels}: {image.shape[0]} channels of '
+              f'{image.shape[1]}x{image.shape[2]} px')
+    return 0
+
+
+def cmd_gallery(args) -> int:
+    from .corpus.generate import generate_room
+    from .plot import save_grid
+    scenes, titles = [], []
+    for rt in ROOM_TYPES:
+        for i in range(args.per_type):
+            s = generate_room(rt, args.seed, i)
+            scenes.append(s)
+            titles.append(f'{rt} #{i} (seed {args.seed})')
+    out = Path(args.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    save_grid(scenes, out, ncols=args.per_type, titles=titles)
+    print(f'wrote {out}')
+    return 0
+
+
+def cmd_demo(args) -> int:
+    """The main job at this stage: furnish a few procedural rooms of each type and show
+    them (JSON, one picture each, a contact sheet, a table in the terminal)."""
+    from .corpus.generate import generate_room
+    from .geometry import check_scene
+    from .plot import save_grid, save_png
+    from .schema import save_scene
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    scenes, titles = [], []
+    print(f'{"room":16s} {"floor":>10s} {"doors":>5s} {"windows":>7s} {"objects":>7s} '
+          f'{"valid":>5s}  categories')
+    for rt in ROOM_TYPES:
+        for i in range(args.per_type):
+            s = generate_room(rt, args.seed, i)
+            name = f'{rt}_{i}'
+            save_scene(s, out / f'{name}.json')
+            save_png(s, out / f'{name}.png', title=name)
+            scenes.append(s)
+            titles.append(name)
+            cats = ', '.join(f'{n}x {c}' if n > 1 else c
+                             for c, n in s.category_counts().items())
+            print(f'{name:16s} {s.room.area:8.1f}m2 {len(s.room.doors):5d} '
+                  f'{len(s.room.windows):7d} {len(s):7d} '
+                  f'{"yes" if check_scene(s).ok else "NO":>5s}  {cats}')
+    save_grid(scenes, out / 'gallery.png', ncols=args.per_type, titles=titles)
+    print(f'\nwrote {len(scenes)} scenes (JSON + PNG) and {out / "gallery.png"}')
+    return 0
+
+
+# ---- catalog & validation ----------------------------------------------------------------
+def cmd_catalog(args) -> int:
+    from . import catalog
+    if args.action == 'list':
+        for v in catalog.all_variants():
+            w, d, h = v.size
+            print(f'{v.model_id:20s} {v.category:16s} {w:6.3f} x {d:6.3f} x {h:6.3f} m')
+        return 0
+    from .meshes import export_catalog, save_contact_sheet
+    if args.action == 'export':
+        cats = [c.strip() for c in args.categories.split(',')] if args.categories else None
+        paths = export_catalog(args.out, fmt=args.format, categories=cats)
+        print(f'wrote {len(paths)} {args.format} models to {args.out}')
+    else:
+        save_contact_sheet(args.out)
+        print(f'wrote {args.out}')
+    return 0
+
+
+def cmd_validate(args) -> int:
+    from .geometry import check_scene
+    for path in args.files:
+        scene = _load(path)
+        report = check_scene(scene)
+        print(f'{path}: schema OK, {len(scene)} objects, physically {report.summary()}')
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog='scene-synth', description=__doc__.splitlines()[0])
+    sub = p.add_subparsers(dest='command', required=True)
+
+    c = sub.add_parser('corpus', help='generate procedural furnished rooms as JSON scenes')
+    c.add_argument('--room-type', default='bedroom', help=f'{"|".join(ROOM_TYPES)}|all')
+    c.add_argument('-n', type=int, default=100, help='rooms per room type')
+    c.add_argument('--out', required=True, help='output directory')
+    c.add_argument('--seed', type=int, default=0)
+    c.add_argument('--workers', type=int, default=None, help='processes (default: all cores)')
+    c.add_argument('--quiet', action='store_true')
+    c.set_defaults(func=cmd_corpus)
+
+    c = sub.add_parser('corpus-stats', help="compare the corpus with the paper's table")
+    c.add_argument('--room-type', default='all')
+    c.add_argument('-n', type=int, default=2000, help='rooms per type to generate')
+    c.add_argument('--seed', type=int, default=0)
+    c.add_argument('--dir', help='read scenes from this directory instead of generating')
+    c.add_argument('--workers', type=int, default=None)
+    c.add_argument('--categories', action='store_true', help='print per-category rates')
+    c.add_argument('--json', help='also write the summary rows to this JSON file')
+    c.set_defaults(func=cmd_corpus_stats)
+
+    c = sub.add_parser('corpus-calibrate', help="fit the corpus' request-rate factors")
+    c.add_argument('--room-type', default='all')
+    c.add_argument('--rooms', type=int, default=2000)
+    c.add_argument('--iterations', type=int, default=3)
+    c.add_argument('--seed', type=int, default=12345)
+    c.add_argument('--workers', type=int, default=None)
+    c.set_defaults(func=cmd_corpus_calibrate)
+
+    c = sub.add_parser('render', help='draw a scene JSON as a top-down picture')
+    c.add_argument('scene')
+    c.add_argument('--png', help='picture for people (matplotlib)')
+    c.add_argument('--channels', help="the network input image as a .npy (C x N x N)")
+    c.add_argument('--resolution', type=int, default=64)
+    c.add_argument('--title')
+    c.set_defaults(func=cmd_render)
+
+    c = sub.add_parser('gallery', help='a grid of corpus rooms, per-type rows')
+    c.add_argument('--out', default='docs/gallery/corpus.png')
+    c.add_argument('--per-type', type=int, default=3)
+    c.add_argument('--seed', type=int, default=0)
+    c.set_defaults(func=cmd_gallery)
+
+    c = sub.add_parser('demo', help='furnish example rooms and show them')
+    c.add_argument('--out', default='demo_out')
+    c.add_argument('--per-type', type=int, default=2)
+    c.add_argument('--seed', type=int, default=0)
+    c.set_defaults(func=cmd_demo)
+
+    c = sub.add_parser('catalog', help='list, export or preview the 3D model catalog')
+    c.add_argument('action', choices=['list', 'export', 'preview'])
+    c.add_argument('--out', default='catalog_out')
+    c.add_argument('--format', choices=['glb', 'obj'], default='glb')
+    c.add_argument('--categories', help='comma-separated categories (default: all)')
+    c.set_defaults(func=cmd_catalog)
+
+    c = sub.add_parser('validate', help='check scene JSON files: schema and physics')
+    c.add_argument('files', nargs='+')
+    c.set_defaults(func=cmd_validate)
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except UserError as e:
+        print(f'scene-synth: {e}', file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        return 130
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,38 @@
+# Two set-up commands, each working on a fresh clone of a fresh machine:
+#   make demo   install into .venv, then furnish example rooms and show them
+#   make test   install into .venv, then run the test suite
+SHELL := /bin/bash
+.SHELLFLAGS := -eo pipefail -c
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed-stamp
+# pip's warnings about the machine's local package mirrors are noise, not failures.
+PIP_QUIET := grep -v -E "is ignored: it is neither a file nor a directory" || true
+
+.PHONY: install demo test bench gallery clean
+
+install: $(STAMP)
+
+$(STAMP): requirements.txt setup.py setup.cfg package.xml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install -q --disable-pip-version-check -r requirements.txt 2>&1 | { $(PIP_QUIET); }
+	$(PY) -m pip install -q --disable-pip-version-check --no-deps --no-build-isolation -e . 2>&1 | { $(PIP_QUIET); }
+	$(PY) -c "import torch, rclpy, shapely, trimesh, scene_synth_ros; assert torch.__version__.startswith('2.13.0'), torch.__version__"
+	touch $(STAMP)
+
+demo: install
+	$(VENV)/bin/scene-synth demo --out demo_out
+
+test: install
+	$(PY) -m pytest -q
+
+bench: install
+	$(PY) benchmarks/bench_render.py
+	$(PY) benchmarks/bench_corpus.py
+
+gallery: install
+	$(VENV)/bin/scene-synth gallery --out docs/gallery/corpus.png
+
+clean:
+	rm -rf $(VENV) demo_out .pytest_cache build *.egg-info

@@ -1,0 +1,101 @@
+"""Generating furnished rooms: one room from a seed, or a whole corpus on all cores."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+import json
+import multiprocessing as mp
+import os
+from pathlib import Path
+from typing import Iterator
+
+import numpy as np
+
+from ..categories import CATEGORIES, ROOM_TYPES, resolve_room_type
+from ..geometry import check_scene
+from ..scene import Scene
+from .furnish import draw_plan, pick_variant, place_first_tier, place_second_tier
+from .layout import Layout
+from .shell import sample_shell
+
+CALIBRATION_FILE = Path(__file__).with_name('calibration.json')
+CIRCULATION = 2.3        # floor area per m^2 of furniture footprint a room is given, at least
+MAX_ATTEMPTS = 8
+
+
+@lru_cache(maxsize=None)
+def load_calibration(path: str | None = None) -> dict[str, dict[str, float]]:
+    """Per room type and category, the factor on the table's rate that makes up for objects
+    that did not fit (written by ``scene-synth corpus-calibrate``)."""
+    p = Path(path) if path else CALIBRATION_FILE
+    if not p.is_file():
+        return {}
+    return json.loads(p.read_text())['factors']
+
+
+@dataclass(frozen=True)
+class RoomRequest:
+    room_type: str
+    seed: int
+    index: int
+    calibration: str | None = None
+
+
+def room_rng(room_type: str, seed: int, index: int) -> np.random.SeedSequence:
+    # One independent stream per (seed, room type, index): a room is the same whichever
+    # worker makes it and however many rooms are made.
+    return np.random.SeedSequence([seed, ROOM_TYPES.index(room_type), index])
+
+
+def generate_room(room_type: str, seed: int = 0, index: int = 0,
+                  calibration: dict[str, float] | None = None) -> Scene:
+    """A furnished room that passes every check of ``geometry.check_scene``."""
+    room_type = resolve_room_type(room_type)
+    if calibration is None:
+        calibration = load_calibration().get(room_type, {})
+    seeds = room_rng(room_type, seed, index).spawn(MAX_ATTEMPTS)
+    for attempt, ss in enumerate(seeds):
+        rng = np.random.default_rng(ss)
+        plan = draw_plan(room_type, rng, calibration)
+        chosen = [pick_variant(c, rng) for c in plan]
+        footprint = sum(v.width * v.depth for c, v in zip(plan, chosen)
+                        if CATEGORIES[c].tier == 'first')
+        room = sample_shell(room_type, rng, min_area=CIRCULATION * footprint + 2.0)
+        lay = Layout(room, rng, {'generator': 'procedural', 'seed': seed, 'index': index})
+        items = list(zip(plan, chosen))
+        first = [(c, v) for c, v in items if CATEGORIES[c].tier == 'first']
+        # Big things go on a surface first, as a person would put the TV before the vase.
+        second = sorted(((c, v) for c, v in items if CATEGORIES[c].tier == 'second'),
+                        key=lambda cv: -cv[1].width * cv[1].depth)
+        for category, variant in first:
+            place_first_tier(lay, category, variant)
+        for category, variant in second:
+            place_second_tier(lay, category, variant)
+        scene = lay.scene
+        scene.meta.pop('_seated', None)
+        if attempt:
+            scene.meta['attempt'] = attempt
+        if check_scene(scene).ok:
+            return scene
+    raise RuntimeError(f'could not generate a valid {room_type} for seed {seed}, '
+                       f'index {index} in {MAX_ATTEMPTS} attempts')
+
+
+def _work(req: RoomRequest) -> Scene:
+    cal = load_calibration(req.calibration).get(req.room_type, {})
+    return generate_room(req.room_type, req.seed, req.index, cal)
+
+
+def generate_corpus(room_type: str, n: int, seed: int = 0, workers: int | None = None,
+                    start: int = 0, calibration_path: str | None = None) -> Iterator[Scene]:
+    """Rooms ``start`` .. ``start + n - 1`` of a corpus, in order, made on ``workers``
+    processes (default: all cores)."""
+    room_type = resolve_room_type(room_type)
+    reqs = [RoomRequest(room_type, seed, i, calibration_path) for i in range(start, start + n)]
+    workers = workers or os.cpu_count() or 1
+    if workers <= 1 or n < 8:
+        yield from map(_work, reqs)
+        return
+    ctx = mp.get_context('fork' if 'fork' in mp.get_all_start_methods() else 'spawn')
+    with ctx.Pool(workers) as pool:
+        yield from pool.imap(_work, reqs, chunksize=16)

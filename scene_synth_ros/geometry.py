@@ -1,0 +1,165 @@
+"""Physical validity of a furnished room: collisions, floor, door zones, support, and a path
+for a robot between the doors.
+
+These are the checks the procedural corpus is held to, the rejection rules of insertion,
+and the plausibility metrics of the evaluation: one definition for all three.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+import math
+
+import numpy as np
+import shapely
+from shapely.geometry import Point, Polygon
+
+from .scene import Opening, PlacedObject, Room, Scene, box_corners
+
+COLLISION_TOLERANCE = 0.01      # first-tier footprints may interpenetrate by at most 1 cm
+FLOOR_TOLERANCE = 0.01          # footprints may poke through a wall by at most 1 cm
+MIN_SUPPORT = 0.70              # a second-tier footprint must be >= 70 % on its parent
+ROBOT_WIDTH = 0.40              # the robot that must get from every door to every door
+DOOR_ZONE_MIN_DEPTH = 0.80      # clear zone inside a door: at least this deep...
+DOOR_ZONE_SIDE_MARGIN = 0.10    # ...and this much wider than the door on each side
+
+
+def shrunk_footprint(obj: PlacedObject, by: float) -> Polygon:
+    """The footprint with every side moved inwards by ``by`` metres (never inverted)."""
+    w = max(obj.width - 2 * by, 1e-4)
+    d = max(obj.depth - 2 * by, 1e-4)
+    return Polygon(box_corners(obj.position[0], obj.position[1], obj.yaw, w, d))
+
+
+def door_zone(room: Room, door: Opening) -> Polygon:
+    """The area inside a door that must stay clear: the door's swing and a step beyond it."""
+    wall = room.wall_of(door)
+    if wall is None:
+        raise ValueError(f'the door at {door.position} is not on a wall of the room')
+    depth = max(DOOR_ZONE_MIN_DEPTH, door.width + 0.1)
+    half = door.width / 2 + DOOR_ZONE_SIDE_MARGIN
+    centre = np.asarray(door.position) + wall.normal * depth / 2
+    return Polygon(box_corners(centre[0], centre[1], wall.inward_yaw, 2 * half, depth))
+
+
+def door_entry_point(room: Room, door: Opening, robot_width: float = ROBOT_WIDTH) -> Point:
+    """Where a robot stands just inside a door."""
+    wall = room.wall_of(door)
+    p = np.asarray(door.position) + wall.normal * (robot_width / 2 + 0.1)
+    return Point(p)
+
+
+def collisions(scene: Scene, tol: float = COLLISION_TOLERANCE) -> list[tuple[str, str]]:
+    """Pairs of first-tier objects that interpenetrate by more than ``tol``."""
+    objs = scene.first_tier
+    shrunk = [shrunk_footprint(o, tol / 2) for o in objs]
+    if len(shrunk) < 2:
+        return []
+    tree = shapely.STRtree(shrunk)
+    a, b = tree.query(shrunk, predicate='intersects')
+    return sorted({(objs[i].id, objs[j].id) for i, j in zip(a, b) if i < j})
+
+
+def off_floor(scene: Scene, tol: float = FLOOR_TOLERANCE) -> list[str]:
+    """Objects whose footprint leaves the floor polygon by more than ``tol``."""
+    floor = scene.room.polygon.buffer(tol, join_style='mitre')
+    return [o.id for o in scene.objects if not floor.covers(o.footprint())]
+
+
+def blocked_doors(scene: Scene, tol: float = COLLISION_TOLERANCE) -> list[int]:
+    """Indices of doors whose clear zone a first-tier object enters by more than ``tol``."""
+    out = []
+    shrunk = [shrunk_footprint(o, tol) for o in scene.first_tier]
+    for k, door in enumerate(scene.room.doors):
+        zone = door_zone(scene.room, door)
+        if any(zone.intersects(s) for s in shrunk):
+            out.append(k)
+    return out
+
+
+def support_fraction(child: PlacedObject, parent: PlacedObject) -> float:
+    fp = child.footprint()
+    return fp.intersection(parent.footprint()).area / fp.area
+
+
+def under_supported(scene: Scene, minimum: float = MIN_SUPPORT) -> list[str]:
+    """Second-tier objects less than ``minimum`` on their parent, or not on its top."""
+    by_id = {o.id: o for o in scene.objects}
+    out = []
+    for o in scene.second_tier:
+        parent = by_id.get(o.support)
+        if (parent is None or abs(o.position[2] - parent.top) > 0.01
+                or support_fraction(o, parent) < minimum):
+            out.append(o.id)
+    return out
+
+
+def free_space(scene: Scene, robot_width: float = ROBOT_WIDTH):
+    """Where the centre of a round robot of ``robot_width`` can be."""
+    r = robot_width / 2
+    free = scene.room.polygon.buffer(-r, join_style='mitre')
+    obstacles = [o.footprint() for o in scene.first_tier]
+    if obstacles:
+        free = free.difference(shapely.union_all(obstacles).buffer(r))
+    return free
+
+
+def doors_connected(scene: Scene, robot_width: float = ROBOT_WIDTH) -> bool:
+    """Whether the robot can stand inside every door and drive between all of them."""
+    doors = scene.room.doors
+    if not doors:
+        return True
+    free = free_space(scene, robot_width)
+    if free.is_empty:
+        return False
+    parts = list(getattr(free, 'geoms', [free]))
+    owners = set()
+    for door in doors:
+        p = door_entry_point(scene.room, door, robot_width)
+        hit = [i for i, part in enumerate(parts) if part.buffer(1e-6).covers(p)]
+        if not hit:
+            return False
+        owners.add(hit[0])
+    return len(owners) == 1
+
+
+@dataclass
+class ValidityReport:
+    """Everything physically wrong with a scene; ``ok`` when nothing is."""
+
+    collisions: list[tuple[str, str]] = field(default_factory=list)
+    off_floor: list[str] = field(default_factory=list)
+    blocked_doors: list[int] = field(default_factory=list)
+    under_supported: list[str] = field(default_factory=list)
+    doors_connected: bool = True
+
+    @property
+    def ok(self) -> bool:
+        return not (self.collisions or self.off_floor or self.blocked_doors
+                    or self.under_supported) and self.doors_connected
+
+    def summary(self) -> str:
+        if self.ok:
+            return 'valid'
+        parts = []
+        if self.collisions:
+            parts.append(f'{len(self.collisions)} colliding pairs {self.collisions}')
+        if self.off_floor:
+            parts.append(f'off the floor: {self.off_floor}')
+        if self.blocked_doors:
+            parts.append(f'blocked doors: {self.blocked_doors}')
+        if self.under_supported:
+            parts.append(f'under-supported: {self.under_supported}')
+        if not self.doors_connected:
+            parts.append(f'doors not connected for a {ROBOT_WIDTH} m robot')
+        return '; '.join(parts)
+
+
+def check_scene(scene: Scene) -> ValidityReport:
+    return ValidityReport(collisions(scene), off_floor(scene), blocked_doors(scene),
+                          under_supported(scene), doors_connected(scene))
+
+
+def yaw_difference(a: float, b: float) -> float:
+    """Smallest absolute angle between two yaws."""
+    d = (a - b) % (2 * math.pi)
+    return min(d, 2 * math.pi - d)

@@ -1,0 +1,223 @@
+"""Pictures of scenes for people: a top-down plan drawn with matplotlib (no screen needed).
+
+The floor is light grey, walls are thick dark lines, a door is a gap in the wall with its leaf
+and a quarter-circle swing into the room, a window is a light-blue double line on the wall.
+Every object is its rotated footprint filled with its category's colour (second-tier objects
+on top, with a darker edge) and a small dark triangle at the middle of its front edge pointing
+the way the object faces. Axes are in metres with a 1 m scale bar.
+
+Colours are a fixed function of the category: ``category_color(name)`` walks the categories
+of ``categories.CATEGORIES`` in their order over a palette made of matplotlib's tab20, tab20b
+and tab20c (greys left out so that no object looks like floor or wall), so a category has the
+same colour in every picture.
+
+Figures are made with ``matplotlib.figure.Figure`` directly (never pyplot), which renders with
+the Agg backend and touches no global matplotlib state.
+"""
+from __future__ import annotations
+
+from functools import lru_cache
+import math
+import os
+from typing import Sequence
+
+import matplotlib
+from matplotlib.collections import LineCollection, PolyCollection
+from matplotlib.figure import Figure
+from matplotlib.patches import Arc, Patch, Polygon as PolygonPatch
+import numpy as np
+
+from .categories import CATEGORIES
+from .scene import Room, Scene
+
+FLOOR_COLOR = '#e4e4e4'
+WALL_COLOR = '#2b2b2b'
+DOOR_COLOR = '#8c5a2b'
+WINDOW_COLOR = '#3d8fd1'
+WINDOW_GLASS_COLOR = '#d4ecfb'
+UNKNOWN_COLOR = (0.6, 0.6, 0.6, 1.0)
+WALL_WIDTH_PT = 4.0
+DEFAULT_FIGSIZE = (8.0, 6.0)
+DEFAULT_DPI = 100
+
+
+@lru_cache(maxsize=1)
+def _palette() -> tuple[tuple[float, float, float, float], ...]:
+    def colors(name):
+        return [tuple(c) for c in matplotlib.colormaps[name].colors]
+
+    t20, t20b, t20c = colors('tab20'), colors('tab20b'), colors('tab20c')
+    t20 = [c for k, c in enumerate(t20) if k not in (14, 15)]       # greys
+    t20c = t20c[:16]                                                  # greys are 16..19
+    # Strong shades first, then lighter ones, so that neighbours in CATEGORIES differ.
+    ordered = (t20[0::2] + t20b[0::4] + t20b[2::4] + t20c[0::4] + t20[1::2] + t20b[1::4]
+               + t20b[3::4] + t20c[1::4] + t20c[2::4] + t20c[3::4])
+    return tuple((r, g, b, 1.0) for r, g, b in ordered)
+
+
+@lru_cache(maxsize=1)
+def category_colors() -> dict[str, tuple[float, float, float, float]]:
+    """The fixed RGBA colour of every category of ``categories.CATEGORIES``."""
+    pal = _palette()
+    return {name: pal[k % len(pal)] for k, name in enumerate(CATEGORIES)}
+
+
+def category_color(category: str) -> tuple[float, float, float, float]:
+    """RGBA colour of ``category`` (grey for a name that is not a category)."""
+    return category_colors().get(category, UNKNOWN_COLOR)
+
+
+def _darker(rgba, f: float = 0.55):
+    r, g, b, a = rgba
+    return (r * f, g * f, b * f, a)
+
+
+# --------------------------------------------------------------------------------------------
+
+def _draw_room(ax, room: Room) -> None:
+    ax.add_patch(PolygonPatch(np.asarray(room.floor), closed=True, facecolor=FLOOR_COLOR,
+                              edgecolor='none', zorder=0))
+    pts = np.asarray(room.floor + room.floor[:2])     # closed, one edge past for the join
+    ax.plot(pts[:-1, 0], pts[:-1, 1], color=WALL_COLOR, lw=WALL_WIDTH_PT,
+            solid_joinstyle='miter', solid_capstyle='projecting', zorder=2)
+
+    door_gaps, window_gaps, leaves, panes = [], [], [], []
+    for op in room.openings:
+        wall = room.wall_of(op) or min(room.walls, key=lambda w: w.distance_to(op.position))
+        d, n = wall.direction, wall.normal
+        c = np.asarray(op.position)
+        a, b = c - d * op.width / 2, c + d * op.width / 2
+        (door_gaps if op.kind == 'door' else window_gaps).append([a, b])
+        if op.kind == 'door':
+            leaves.append([a, a + n * op.width])
+            theta = math.degrees(math.atan2(d[1], d[0]))
+            ax.add_patch(Arc(tuple(a), 2 * op.width, 2 * op.width, theta1=theta,
+                             theta2=theta + 90.0, color=DOOR_COLOR, lw=0.9, ls='--',
+                             zorder=3))
+        else:
+            off = n * 0.035
+            panes += [[a + off, b + off], [a - off, b - off]]
+    for gaps, color in ((door_gaps, FLOOR_COLOR), (window_gaps, WINDOW_GLASS_COLOR)):
+        if gaps:
+            ax.add_collection(LineCollection(gaps, colors=color, linewidths=WALL_WIDTH_PT + 0.6,
+                                             capstyle='butt', zorder=2.5))
+    if leaves:
+        ax.add_collection(LineCollection(leaves, colors=DOOR_COLOR, linewidths=1.6,
+                                         zorder=3))
+    if panes:
+        ax.add_collection(LineCollection(panes, colors=WINDOW_COLOR, linewidths=1.3,
+                                         capstyle='butt', zorder=3))
+
+
+def _front_triangle(o) -> np.ndarray:
+    f = o.front
+    s = np.array([-f[1], f[0]])
+    c = np.asarray(o.position[:2])
+    size = min(max(0.25 * min(o.width, o.depth), 0.03), 0.25)
+    apex = c + f * o.depth / 2
+    base = apex - f * size
+    return np.array([apex, base + s * 0.6 * size, base - s * 0.6 * size])
+
+
+def draw_scene(scene: Scene, ax=None, legend: bool = True, title: str | None = None,
+               scale_bar: bool = True):
+    """Draw ``scene`` on ``ax`` (a new figure of ``DEFAULT_FIGSIZE`` if None) and return the
+    axes. ``title=None`` writes the room type and object count; ``''`` writes none."""
+    if ax is None:
+        fig = Figure(figsize=DEFAULT_FIGSIZE, dpi=DEFAULT_DPI)
+        ax = fig.add_axes((0.08, 0.08, 0.6, 0.84) if legend else (0.1, 0.08, 0.85, 0.84))
+    room = scene.room
+    _draw_room(ax, room)
+
+    objs = sorted(scene.objects, key=lambda o: (o.support is not None, o.top))
+    for tier, zorder, lw in ((False, 4, 0.6), (True, 6, 1.1)):
+        group = [o for o in objs if (o.support is not None) == tier]
+        if not group:
+            continue
+        faces = [category_color(o.category) for o in group]
+        edges = [_darker(c, 0.25 if tier else 0.6) for c in faces]
+        ax.add_collection(PolyCollection([o.corners() for o in group], facecolors=faces,
+                                         edgecolors=edges, linewidths=lw, zorder=zorder))
+        ax.add_collection(PolyCollection([_front_triangle(o) for o in group],
+                                         facecolors=(0.1, 0.1, 0.1, 0.75),
+                                         edgecolors='none', zorder=zorder + 0.5))
+
+    x0, y0, x1, y1 = room.bounds
+    pad = 0.35
+    ax.set_xlim(x0 - pad, x1 + pad)
+    ax.set_ylim(y0 - (0.75 if scale_bar else pad), y1 + pad)   # room for the scale bar
+    ax.set_aspect('equal', adjustable='box')
+    ax.set_xlabel('x [m]', fontsize=8)
+    ax.set_ylabel('y [m]', fontsize=8)
+    ax.tick_params(labelsize=7)
+    if title is None:
+        title = f'{room.room_type}: {len(scene)} objects'
+    if title:
+        ax.set_title(title, fontsize=10)
+    if scale_bar:
+        from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
+        ax.add_artist(AnchoredSizeBar(ax.transData, 1.0, '1 m', 'lower right', pad=0.3,
+                                      borderpad=0.3, sep=2, frameon=False, size_vertical=0.03,
+                                      fontproperties={'size': 7}))
+    if legend:
+        handles = _legend_handles(_present_categories([scene]))
+        if handles:
+            ax.legend(handles=handles, loc='upper left', bbox_to_anchor=(1.02, 1.0),
+                      fontsize=7, frameon=False, borderaxespad=0.0)
+    return ax
+
+
+def _present_categories(scenes: Sequence[Scene]) -> list[str]:
+    """Categories present in ``scenes``, in ``CATEGORIES`` order (unknown names last)."""
+    seen = {o.category for s in scenes for o in s.objects}
+    order = {name: k for k, name in enumerate(CATEGORIES)}
+    return sorted(seen, key=lambda c: (order.get(c, len(order)), c))
+
+
+def _legend_handles(categories: Sequence[str]) -> list[Patch]:
+    return [Patch(facecolor=category_color(c), edgecolor=_darker(category_color(c), 0.6),
+                  label=c) for c in categories]
+
+
+def save_png(scene: Scene, path: str | os.PathLike, dpi: int = DEFAULT_DPI,
+             figsize: tuple[float, float] = DEFAULT_FIGSIZE, legend: bool = True,
+             title: str | None = None) -> str:
+    """Write a picture of ``scene`` to ``path`` (PNG of exactly ``figsize * dpi`` pixels) and
+    return the path."""
+    fig = Figure(figsize=figsize, dpi=dpi)
+    ax = fig.add_axes((0.08, 0.08, 0.6, 0.84) if legend else (0.1, 0.08, 0.85, 0.84))
+    draw_scene(scene, ax=ax, legend=legend, title=title)
+    fig.savefig(path, dpi=dpi, format='png')
+    return os.fspath(path)
+
+
+def save_grid(scenes: Sequence[Scene], path: str | os.PathLike, ncols: int = 3,
+              titles: Sequence[str] | None = None, dpi: int = DEFAULT_DPI,
+              cell: float = 3.6, legend: bool = True) -> str:
+    """A gallery: the scenes on a grid of ``ncols`` columns (``cell`` inches per picture),
+    with one legend of every category present at the right. Returns the path."""
+    scenes = list(scenes)
+    if not scenes:
+        raise ValueError('save_grid needs at least one scene')
+    if titles is not None and len(titles) != len(scenes):
+        raise ValueError(f'{len(titles)} titles given for {len(scenes)} scenes')
+    ncols = max(1, min(int(ncols), len(scenes)))
+    nrows = math.ceil(len(scenes) / ncols)
+    legend_w = 2.0 if legend else 0.0
+    fig = Figure(figsize=(ncols * cell + legend_w, nrows * cell), dpi=dpi)
+    axes = fig.subplots(nrows, ncols, squeeze=False)
+    fig.subplots_adjust(left=0.06 * cell * ncols / (ncols * cell + legend_w),
+                        right=(ncols * cell) / (ncols * cell + legend_w) - 0.01,
+                        bottom=0.06, top=0.93, wspace=0.3, hspace=0.35)
+    for k, ax in enumerate(axes.flat):
+        if k >= len(scenes):
+            ax.set_axis_off()
+            continue
+        draw_scene(scenes[k], ax=ax, legend=False,
+                   title=None if titles is None else titles[k])
+    if legend:
+        handles = _legend_handles(_present_categories(scenes))
+        if handles:
+            fig.legend(handles=handles, loc='upper right', fontsize=7, frameon=False)
+    fig.savefig(path, dpi=dpi, format='png')
+    return os.fspath(path)

@@ -1,0 +1,449 @@
+"""Multi-channel top-down images of a scene: the input of every neural module of the paper.
+
+An image is a float32 array shaped ``(C, N, N)`` whose channels are, in this order:
+
+====  ==============  ========================================================================
+ 0    ``ROOM``        floor of the room (1 inside the floor polygon)
+ 1    ``WALL``        walls: outside the floor and within the wall reach of its outline
+ 2    ``OBJECT``      any object's footprint
+ 3    ``HEIGHT``      top height of the highest object at the pixel, metres / ``HEIGHT_SCALE``
+ 4    ``SIN``         sin of the yaw of that highest object, relative to the frame's yaw
+ 5    ``COS``         cos of the same (sin and cos are 0 where there is no object)
+ 6    ``DOOR``        door openings
+ 7    ``WINDOW``      window openings
+ 8..  categories      one channel per category of the room type, in ``room_spec(rt).names``
+                      order (``FIRST_CATEGORY + index``), 1 inside that category's footprints
+====  ==============  ========================================================================
+
+Geometry of an image (``Frame``): a square of side ``extent`` metres centred at ``centre``
+and rotated by ``yaw``, sampled by ``N x N`` pixels of ``m = extent / N`` metres. Pixel
+(row ``i``, column ``j``) has its centre at the frame-local point
+``u = (j + 0.5 - N/2) m``, ``v = (i + 0.5 - N/2) m`` and at the world point
+``centre + R(yaw) (u, v)``. The row index grows with local +y: show images with
+``origin='lower'`` to see them the way the world is drawn.
+
+Pixel rule: a pixel belongs to a shape iff its centre lies inside the shape or on its boundary
+(closed shapes; a tolerance of ``EPS_PX`` pixel absorbs floating-point rounding, so a centre
+exactly on an edge counts as inside whatever rotation or whole-pixel shift produced it).
+Everything is rasterised directly in the frame (polygons and boxes are transformed, then
+tested at the pixel centres); nothing is resampled, so rotated local crops are as crisp as the
+global view.
+
+Objects are drawn in order of increasing top height (ties: scene order), so the highest object
+at a pixel owns ``HEIGHT``, ``SIN`` and ``COS`` there: a second-tier object wins over its
+parent.
+
+Walls: a pixel is wall iff its centre is outside the floor polygon and within the wall reach
+``max(WALL_THICKNESS, m)`` of the floor outline (at least one pixel, so that coarse images
+still have a closed wall ring).
+
+Doors and windows are drawn as the rectangle of the opening: along its wall, the opening's
+width centred at its position; across the wall, from ``max(OPENING_DEPTH, wall reach)``
+outside to the same distance inside the floor outline (so the opening covers the wall pixels
+it interrupts plus a strip of floor).
+"""
+from __future__ import annotations
+
+from collections import OrderedDict
+from dataclasses import dataclass
+from functools import lru_cache
+import math
+from typing import Iterable
+
+import numpy as np
+
+from .categories import ROOM_SIZE_CAP, resolve_room_type, room_spec
+from .scene import Room, Scene
+
+# Channel indices.
+ROOM = 0
+WALL = 1
+OBJECT = 2
+HEIGHT = 3
+SIN = 4
+COS = 5
+DOOR = 6
+WINDOW = 7
+FIRST_CATEGORY = 8
+FIXED_CHANNEL_NAMES = ('room', 'wall', 'object', 'height', 'sin', 'cos', 'door', 'window')
+
+HEIGHT_SCALE = 3.0        # metres: the HEIGHT channel holds top height / HEIGHT_SCALE
+WALL_THICKNESS = 0.15     # metres of wall drawn outside the floor outline (at least 1 pixel)
+OPENING_DEPTH = 0.15      # metres a door/window rectangle reaches on each side of its wall
+EPS_PX = 1e-6             # pixels: boundary tolerance of the pixel-centre rule
+DEFAULT_RESOLUTION = 64
+
+
+def num_channels(room_type: str) -> int:
+    """Number of channels of an image of ``room_type``."""
+    return FIRST_CATEGORY + len(room_spec(room_type).names)
+
+
+def channel_names(room_type: str) -> tuple[str, ...]:
+    """Names of the channels of an image of ``room_type``, in order."""
+    return FIXED_CHANNEL_NAMES + room_spec(room_type).names
+
+
+@lru_cache(maxsize=None)
+def _category_channels(room_type: str) -> dict[str, int]:
+    return {name: FIRST_CATEGORY + k for k, name in enumerate(room_spec(room_type).names)}
+
+
+def category_channel(room_type: str, category: str) -> int:
+    """Channel index of ``category`` in images of ``room_type``."""
+    try:
+        return _category_channels(room_type)[category]
+    except KeyError:
+        raise ValueError(f'category {category!r} is not one of the {room_type} categories') \
+            from None
+
+
+# --------------------------------------------------------------------------------------------
+# Frames and coordinate conversions
+# --------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Frame:
+    """The square of the world an image covers (see the module docstring for the geometry)."""
+
+    centre: tuple[float, float]
+    yaw: float
+    extent: float          # side of the square, metres
+    resolution: int        # N: the image is N x N pixels
+
+    def __post_init__(self):
+        object.__setattr__(self, 'centre', (float(self.centre[0]), float(self.centre[1])))
+        object.__setattr__(self, 'yaw', float(self.yaw))
+        object.__setattr__(self, 'extent', float(self.extent))
+        object.__setattr__(self, 'resolution', int(self.resolution))
+        if self.extent <= 0 or self.resolution <= 0:
+            raise ValueError('a frame needs a positive extent and resolution')
+
+    @property
+    def metres_per_pixel(self) -> float:
+        return self.extent / self.resolution
+
+    @classmethod
+    def for_room(cls, room: Room, resolution: int = DEFAULT_RESOLUTION) -> 'Frame':
+        """The global view: centred on the room's bounding box, yaw 0, side = the room type's
+        size cap. Raises ValueError if the room does not fit in that square."""
+        rt = resolve_room_type(room.room_type)
+        cap = ROOM_SIZE_CAP[rt]
+        xs = [p[0] for p in room.floor]
+        ys = [p[1] for p in room.floor]
+        w, h = max(xs) - min(xs), max(ys) - min(ys)
+        if w > cap + 1e-9 or h > cap + 1e-9:
+            raise ValueError(f'the {rt} spans {w:.2f} x {h:.2f} m, which does not fit in the '
+                             f'{cap:g} m square a {rt} image covers')
+        return cls(((min(xs) + max(xs)) / 2.0, (min(ys) + max(ys)) / 2.0), 0.0, cap,
+                   resolution)
+
+    @classmethod
+    def local(cls, room_type: str, point: Iterable[float], yaw: float,
+              resolution: int = DEFAULT_RESOLUTION) -> 'Frame':
+        """A view of the same scale as the global one, centred at ``point`` (x, y; a z is
+        ignored) and rotated by ``yaw``: in it, world direction ``yaw`` is the image's +u
+        (column) axis."""
+        p = tuple(point)
+        return cls((p[0], p[1]), yaw, ROOM_SIZE_CAP[resolve_room_type(room_type)], resolution)
+
+    # World <-> frame-local metres.
+    def to_local(self, xy) -> np.ndarray:
+        """World points (..., 2) to frame-local metres (u, v)."""
+        d = np.asarray(xy, dtype=float)[..., :2] - np.asarray(self.centre)
+        c, s = math.cos(self.yaw), math.sin(self.yaw)
+        return np.stack([c * d[..., 0] + s * d[..., 1], -s * d[..., 0] + c * d[..., 1]], -1)
+
+    def to_world(self, uv) -> np.ndarray:
+        """Frame-local metres (..., 2) to world points."""
+        uv = np.asarray(uv, dtype=float)
+        c, s = math.cos(self.yaw), math.sin(self.yaw)
+        return np.stack([self.centre[0] + c * uv[..., 0] - s * uv[..., 1],
+                         self.centre[1] + s * uv[..., 0] + c * uv[..., 1]], -1)
+
+    def world_to_pixel(self, xy, continuous: bool = False) -> np.ndarray:
+        return world_to_pixel(self, xy, continuous)
+
+    def pixel_to_world(self, ij) -> np.ndarray:
+        return pixel_to_world(self, ij)
+
+
+def pixel_to_world(frame: Frame, ij) -> np.ndarray:
+    """World (x, y) of pixel coordinates ``ij`` = (..., 2) as (row, col). Integer coordinates
+    give pixel centres; fractional ones interpolate (pixel (i, j) covers [i-0.5, i+0.5) x
+    [j-0.5, j+0.5) in these units)."""
+    ij = np.asarray(ij, dtype=float)
+    m, half = frame.metres_per_pixel, frame.resolution / 2.0
+    uv = np.stack([(ij[..., 1] + 0.5 - half) * m, (ij[..., 0] + 0.5 - half) * m], -1)
+    return frame.to_world(uv)
+
+
+def world_to_pixel(frame: Frame, xy, continuous: bool = False) -> np.ndarray:
+    """Pixel (row, col) of world points ``xy`` (..., 2).
+
+    By default the integer index of the pixel containing each point (a point on a pixel border
+    goes to the higher index; indices outside [0, N) mean outside the image). With
+    ``continuous=True`` the fractional coordinates, the exact inverse of ``pixel_to_world``."""
+    uv = frame.to_local(xy)
+    m, half = frame.metres_per_pixel, frame.resolution / 2.0
+    rc = np.stack([uv[..., 1] / m + half - 0.5, uv[..., 0] / m + half - 0.5], -1)
+    if continuous:
+        return rc
+    return np.floor(rc + 0.5).astype(np.int64)
+
+
+# --------------------------------------------------------------------------------------------
+# Rasterisation (all in pixel-centre coordinates: pixel (i, j) is the point x = j, y = i)
+# --------------------------------------------------------------------------------------------
+
+def _to_px(frame: Frame, x: float, y: float) -> tuple[float, float]:
+    """World point to pixel-centre coordinates (col, row) as floats."""
+    c, s = math.cos(frame.yaw), math.sin(frame.yaw)
+    dx, dy = x - frame.centre[0], y - frame.centre[1]
+    m, half = frame.metres_per_pixel, frame.resolution / 2.0 - 0.5
+    return (c * dx + s * dy) / m + half, (-s * dx + c * dy) / m + half
+
+
+def _box_window(n: int, cx: float, cy: float, theta: float, hx: float, hy: float):
+    """Pixels of a rotated box (pixel units): centre (cx, cy), axis ``theta``, half extents
+    ``hx`` along the axis, ``hy`` across. Returns (r0, r1, c0, c1, mask) with ``mask`` the
+    boolean pixels of rows r0:r1, columns c0:c1, or None if no pixel centre is inside."""
+    c, s = math.cos(theta), math.sin(theta)
+    ex = abs(c) * hx + abs(s) * hy
+    ey = abs(s) * hx + abs(c) * hy
+    r0 = max(0, math.ceil(cy - ey - EPS_PX))
+    r1 = min(n, math.floor(cy + ey + EPS_PX) + 1)
+    c0 = max(0, math.ceil(cx - ex - EPS_PX))
+    c1 = min(n, math.floor(cx + ex + EPS_PX) + 1)
+    if r0 >= r1 or c0 >= c1:
+        return None
+    dy = (np.arange(r0, r1, dtype=float) - cy)[:, None]
+    dx = (np.arange(c0, c1, dtype=float) - cx)[None, :]
+    a = dx * c + dy * s
+    b = dy * c - dx * s
+    mask = (np.abs(a) <= hx + EPS_PX) & (np.abs(b) <= hy + EPS_PX)
+    if not mask.any():
+        return None
+    return r0, r1, c0, c1, mask
+
+
+def _polygon_parity(n: int, px: np.ndarray, py: np.ndarray) -> np.ndarray:
+    """Even-odd inside test of all pixel centres against a closed polygon (pixel units), by
+    scanlines: each edge toggles, on every row it crosses, the pixels left of the crossing."""
+    rows_all, ks_all = [], []
+    k = len(px)
+    for e in range(k):
+        x0, y0, x1, y1 = px[e], py[e], px[(e + 1) % k], py[(e + 1) % k]
+        if y0 == y1:
+            continue
+        lo, hi = (y0, y1) if y0 < y1 else (y1, y0)
+        r_lo, r_hi = max(0, math.ceil(lo)), min(n, math.ceil(hi))   # rows with lo <= r < hi
+        if r_lo >= r_hi:
+            continue
+        rows = np.arange(r_lo, r_hi)
+        xc = x0 + (rows - y0) * ((x1 - x0) / (y1 - y0))
+        rows_all.append(rows)
+        ks_all.append(np.clip(np.ceil(xc), 0, n).astype(np.int64))   # toggles j < xc
+    if not rows_all:
+        return np.zeros((n, n), dtype=bool)
+    rows = np.concatenate(rows_all)
+    ks = np.concatenate(ks_all)
+    d = np.bincount(rows * (n + 1) + ks, minlength=n * (n + 1)).reshape(n, n + 1)
+    counts = np.cumsum(d[:, ::-1], axis=1)[:, ::-1]     # counts[:, j] = crossings with k >= j
+    return (counts[:, 1:] & 1).astype(bool)             # pixel j: crossings with k > j
+
+
+def _boundary_distance2(n: int, px: np.ndarray, py: np.ndarray, reach: float) -> np.ndarray:
+    """Squared distance (pixels^2) from every pixel centre to the polygon's outline, exact
+    within ``reach`` pixels of it and +inf (or larger than reach^2) beyond."""
+    d2 = np.full((n, n), np.inf)
+    k = len(px)
+    for e in range(k):
+        x0, y0, x1, y1 = px[e], py[e], px[(e + 1) % k], py[(e + 1) % k]
+        r0 = max(0, math.ceil(min(y0, y1) - reach))
+        r1 = min(n, math.floor(max(y0, y1) + reach) + 1)
+        c0 = max(0, math.ceil(min(x0, x1) - reach))
+        c1 = min(n, math.floor(max(x0, x1) + reach) + 1)
+        if r0 >= r1 or c0 >= c1:
+            continue
+        ex, ey = x1 - x0, y1 - y0
+        ll = ex * ex + ey * ey
+        qy = (np.arange(r0, r1, dtype=float) - y0)[:, None]
+        qx = (np.arange(c0, c1, dtype=float) - x0)[None, :]
+        t = np.clip((qx * ex + qy * ey) / ll, 0.0, 1.0) if ll > 0 else 0.0
+        dd = (qx - t * ex) ** 2 + (qy - t * ey) ** 2
+        np.minimum(d2[r0:r1, c0:c1], dd, out=d2[r0:r1, c0:c1])
+    return d2
+
+
+# --------------------------------------------------------------------------------------------
+# Room geometry and the static (architecture) layers
+# --------------------------------------------------------------------------------------------
+
+def _room_key(room: Room):
+    return (room.room_type, room.floor, room.doors, room.windows)
+
+
+def _opening_boxes(room: Room) -> list[tuple[int, float, float, float, float]]:
+    """(channel, cx, cy, wall angle, half width) of every door and window, in world units."""
+    out = []
+    for channel, openings in ((DOOR, room.doors), (WINDOW, room.windows)):
+        for op in openings:
+            wall = room.wall_of(op)
+            if wall is None:     # not within tolerance of a wall: use the nearest one
+                wall = min(room.walls, key=lambda w: w.distance_to(op.position))
+            dx, dy = wall.direction
+            out.append((channel, op.position[0], op.position[1], math.atan2(dy, dx),
+                        op.width / 2.0))
+    return out
+
+
+def wall_reach(frame: Frame) -> float:
+    """Metres outside the floor outline that are drawn as wall in ``frame``."""
+    return max(WALL_THICKNESS, frame.metres_per_pixel)
+
+
+def static_layers(room: Room, frame: Frame, openings=None) -> np.ndarray:
+    """The architecture of ``room`` in ``frame``: float32 (4, N, N) = room, wall, door,
+    window masks (uncached; ``TopDownRenderer`` caches them)."""
+    n = frame.resolution
+    m = frame.metres_per_pixel
+    pts = np.array([_to_px(frame, x, y) for x, y in room.floor])
+    px, py = pts[:, 0], pts[:, 1]
+    reach_m = wall_reach(frame)
+    reach = reach_m / m + EPS_PX
+    d2 = _boundary_distance2(n, px, py, reach)
+    floor = _polygon_parity(n, px, py) | (d2 <= EPS_PX * EPS_PX)
+    wall = ~floor & (d2 <= reach * reach)
+    out = np.zeros((4, n, n), dtype=np.float32)
+    out[0] = floor
+    out[1] = wall
+    if openings is None:
+        openings = _opening_boxes(room)
+    for channel, x, y, angle, half_w in openings:
+        cx, cy = _to_px(frame, x, y)
+        win = _box_window(n, cx, cy, angle - frame.yaw, half_w / m,
+                          max(OPENING_DEPTH, reach_m) / m)
+        if win is not None:
+            r0, r1, c0, c1, mask = win
+            out[2 if channel == DOOR else 3, r0:r1, c0:c1][mask] = 1.0
+    return out
+
+
+class _LRU:
+    def __init__(self, maxsize: int):
+        self.maxsize = maxsize
+        self.data: OrderedDict = OrderedDict()
+
+    def get(self, key):
+        value = self.data.get(key)
+        if value is not None:
+            self.data.move_to_end(key)
+        return value
+
+    def put(self, key, value):
+        self.data[key] = value
+        self.data.move_to_end(key)
+        while len(self.data) > self.maxsize:
+            self.data.popitem(last=False)
+
+    def clear(self):
+        self.data.clear()
+
+
+# --------------------------------------------------------------------------------------------
+# The renderer
+# --------------------------------------------------------------------------------------------
+
+class TopDownRenderer:
+    """Renders scenes to ``(C, N, N)`` float32 images (see the module docstring).
+
+    The architecture layers are cached per (room, frame) in a small LRU keyed on the room's
+    content (type, floor, doors, windows) and the frame, so furnishing a room object by
+    object re-rasterises only the objects."""
+
+    def __init__(self, resolution: int = DEFAULT_RESOLUTION, cache_size: int = 32):
+        self.resolution = int(resolution)
+        self._static = _LRU(cache_size)
+        self._rooms = _LRU(max(8, cache_size))
+
+    def clear_cache(self) -> None:
+        self._static.clear()
+        self._rooms.clear()
+
+    def num_channels(self, room_type: str) -> int:
+        return num_channels(room_type)
+
+    def global_frame(self, room: Room) -> Frame:
+        return Frame.for_room(room, self.resolution)
+
+    def local_frame(self, room_type: str, point, yaw: float) -> Frame:
+        return Frame.local(room_type, point, yaw, self.resolution)
+
+    def static_layers(self, room: Room, frame: Frame) -> np.ndarray:
+        """Cached (4, N, N) room, wall, door, window masks. Do not modify the result."""
+        rkey = _room_key(room)
+        key = (rkey, frame)
+        layers = self._static.get(key)
+        if layers is None:
+            openings = self._rooms.get(rkey)
+            if openings is None:
+                openings = _opening_boxes(room)
+                self._rooms.put(rkey, openings)
+            layers = static_layers(room, frame, openings)
+            self._static.put(key, layers)
+        return layers
+
+    def render(self, scene: Scene, frame: Frame | None = None) -> np.ndarray:
+        """The image of ``scene`` in ``frame`` (default: the room's global view)."""
+        room = scene.room
+        if frame is None:
+            frame = Frame.for_room(room, self.resolution)
+        channels = _category_channels(resolve_room_type(room.room_type))
+        objs = sorted(scene.objects, key=lambda o: o.top)
+        chans = []
+        for o in objs:
+            ch = channels.get(o.category)
+            if ch is None:
+                raise ValueError(f'object {o.id!r} has category {o.category!r}, which is not '
+                                 f'one of the {room.room_type} categories')
+            chans.append(ch)
+
+        n = frame.resolution
+        out = np.zeros((FIRST_CATEGORY + len(channels), n, n), dtype=np.float32)
+        static = self.static_layers(room, frame)
+        out[ROOM:WALL + 1] = static[0:2]
+        out[DOOR:WINDOW + 1] = static[2:4]
+
+        m = frame.metres_per_pixel
+        fyaw = frame.yaw
+        for o, ch in zip(objs, chans):
+            cx, cy = _to_px(frame, o.position[0], o.position[1])
+            theta = o.yaw - fyaw
+            win = _box_window(n, cx, cy, theta, o.size[1] / (2.0 * m), o.size[0] / (2.0 * m))
+            if win is None:
+                continue
+            r0, r1, c0, c1, mask = win
+            out[OBJECT, r0:r1, c0:c1][mask] = 1.0
+            out[ch, r0:r1, c0:c1][mask] = 1.0
+            out[HEIGHT, r0:r1, c0:c1][mask] = o.top / HEIGHT_SCALE
+            out[SIN, r0:r1, c0:c1][mask] = math.sin(theta)
+            out[COS, r0:r1, c0:c1][mask] = math.cos(theta)
+        return out
+
+    def render_local(self, scene: Scene, point, yaw: float) -> np.ndarray:
+        """The image of ``scene`` in ``Frame.local(room_type, point, yaw)``: what the
+        orientation and dimension modules see for an object placed at ``point``."""
+        return self.render(scene, Frame.local(scene.room.room_type, point, yaw,
+                                              self.resolution))
+
+    def render_tensor(self, scene: Scene, frame: Frame | None = None, device=None):
+        """``render`` as a torch tensor (C, N, N)."""
+        return to_tensor(self.render(scene, frame), device)
+
+
+def to_tensor(image: np.ndarray, device=None):
+    """A numpy image (or batch of images) as a float32 torch tensor."""
+    import torch
+    t = torch.from_numpy(np.ascontiguousarray(image, dtype=np.float32))
+    return t if device is None else t.to(device)

@@ -1,0 +1,600 @@
+"""Validated reading and writing of room layouts and scenes as JSON.
+
+Everything that comes from outside (a ROS message, a file, a service request) goes through
+here: the JSON Schema documents in ``msg_schemas/`` first, then the checks a schema cannot
+express (geometry, room-type rules, support relations). Any problem raises
+``SceneValidationError`` whose ``path`` names the offending field (``"room.floor[2]"``,
+``"objects[3].size"``; ``""`` for the document itself) and whose message is one sentence.
+
+Two JSON documents are read:
+
+* a *room layout* (``parse_room_layout``): ``room_type``, ``floor``, optional
+  ``wall_height``/``doors``/``windows`` and optional ``objects`` (a partial room) whose ``id``
+  and ``model_id`` may be omitted and are then filled in;
+* a *scene* (``parse_scene``): ``{"room": ..., "objects": [...], "meta": {...}}``, as written
+  by ``dump_scene``; every object has an ``id`` and a ``model_id``.
+
+Paths inside a layout are relative to the layout (``"floor[2]"``); inside a scene the room's
+fields are under ``"room."``. Room types are stored under their canonical name
+(``"living room"`` becomes ``"living"``), floors counter-clockwise.
+
+The schemas are resolved locally through a ``referencing`` registry; nothing is fetched.
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping
+from functools import lru_cache
+import json
+import math
+import os
+from pathlib import Path
+from typing import Any, Iterable
+
+import numpy as np
+import shapely
+
+from . import catalog
+from .categories import CATEGORIES, ROOM_SIZE_CAP, ROOM_TYPES, resolve_room_type, room_spec
+from .paths import schema_dir
+from .scene import Opening, PlacedObject, Room, Scene, ccw
+
+__all__ = [
+    'SceneValidationError', 'parse_room_layout', 'parse_scene', 'load_scene', 'dump_scene',
+    'save_scene', 'validate_scene_dict', 'validate_layout_dict', 'SCHEMA_IDS',
+    'MIN_FLOOR_AREA', 'WALL_HEIGHT_RANGE', 'OPENING_TOLERANCE', 'FLOOR_TOLERANCE',
+    'SIZE_SLACK', 'DEFAULT_WALL_HEIGHT', 'MIN_VERTEX_SPACING',
+]
+
+_BASE = 'https://scene-synth-ros.invalid/msg_schemas/'
+SCHEMA_IDS = {
+    'room_layout': _BASE + 'room_layout.schema.json',
+    'placed_object': _BASE + 'placed_object.schema.json',
+    'scene': _BASE + 'scene.schema.json',
+}
+
+DEFAULT_WALL_HEIGHT = 2.6
+MIN_FLOOR_AREA = 2.0            # m^2: a smaller floor is degenerate, not a room
+MIN_VERTEX_SPACING = 1e-3       # m: consecutive vertices closer than this repeat each other
+WALL_HEIGHT_RANGE = (1.8, 6.0)  # m, inclusive (also in room_layout.schema.json)
+OPENING_TOLERANCE = 0.01        # m: an opening's centre and ends may miss its wall by this
+FLOOR_TOLERANCE = 0.01          # m: an object's centre may lie this far outside the floor
+SIZE_SLACK = 0.5                # CategoryInfo.size_is_plausible slack
+
+
+class SceneValidationError(ValueError):
+    """Invalid layout or scene. ``path`` names the field (``""``: the whole document)."""
+
+    def __init__(self, message: str, path: str = ''):
+        super().__init__(message)
+        self.path = path
+
+    def __reduce__(self):
+        return (type(self), (str(self), self.path))
+
+
+# ----------------------------------------------------------------------------- formatting
+
+def _join(prefix: str, key: str | int) -> str:
+    if isinstance(key, int):
+        return f'{prefix}[{key}]'
+    return f'{prefix}.{key}' if prefix else key
+
+
+def _path_of(prefix: str, parts: Iterable[str | int]) -> str:
+    path = prefix
+    for p in parts:
+        path = _join(path, p)
+    return path
+
+
+def _name(path: str) -> str:
+    """How a path reads in a message: the path, or 'the payload' for the document."""
+    return path or 'the payload'
+
+
+def _a(noun: str) -> str:
+    """The noun with its indefinite article ('a bedroom', 'an office')."""
+    return f'{"an" if noun[:1] in "aeiou" else "a"} {noun}'
+
+
+def _num(x: float) -> str:
+    if isinstance(x, float):
+        if math.isnan(x):
+            return 'NaN'
+        if math.isinf(x):
+            return 'Infinity' if x > 0 else '-Infinity'
+    s = f'{float(x):.3f}'.rstrip('0').rstrip('.')
+    return '0' if s in ('-0', '') else s
+
+
+def _json_type(value: Any) -> str:
+    if value is None:
+        return 'null'
+    if isinstance(value, bool):
+        return 'boolean'
+    if isinstance(value, (int, float)):
+        return 'number'
+    if isinstance(value, str):
+        return 'string'
+    if isinstance(value, list):
+        return 'array'
+    if isinstance(value, dict):
+        return 'object'
+    return type(value).__name__
+
+
+_ARTICLE = {'array': 'an array', 'object': 'an object', 'integer': 'an integer',
+            'number': 'a number', 'string': 'a string', 'boolean': 'a boolean', 'null': 'null'}
+
+_UNITS = {'floor': ' m', 'position': ' m', 'size': ' m', 'width': ' m', 'height': ' m',
+          'sill': ' m', 'wall_height': ' m', 'yaw': ' rad'}
+
+
+def _unit(path: str) -> str:
+    """The unit of the numeric field at ``path`` ('' when it has none)."""
+    for part in reversed(path.replace('[', '.').split('.')):
+        if part and not part[0].isdigit():
+            return _UNITS.get(part, '')
+    return ''
+
+
+# ----------------------------------------------------------------------------- plumbing
+
+def _plain(value: Any) -> Any:
+    """A JSON-like copy: mappings -> dict, tuples -> lists, numpy scalars/arrays -> Python."""
+    if isinstance(value, Mapping):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return _plain(value.tolist())
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def _load(text_or_dict: Any) -> dict[str, Any]:
+    """The payload as a plain dict (the type of the top level is checked by the schema)."""
+    if isinstance(text_or_dict, (bytes, bytearray)):
+        try:
+            text_or_dict = bytes(text_or_dict).decode('utf-8')
+        except UnicodeDecodeError as e:
+            raise SceneValidationError(
+                f'the payload is not valid UTF-8 text: byte {e.start} cannot be decoded',
+                '') from None
+    if isinstance(text_or_dict, str):
+        try:
+            return json.loads(text_or_dict)
+        except json.JSONDecodeError as e:
+            raise SceneValidationError(
+                f'the payload is not valid JSON: {e.msg} at line {e.lineno} column {e.colno}',
+                '') from None
+        except RecursionError:
+            raise SceneValidationError('the payload is not valid JSON: it is nested too deeply',
+                                       '') from None
+    if isinstance(text_or_dict, Mapping):
+        return _plain(text_or_dict)
+    raise SceneValidationError(
+        f'the payload must be JSON text or a dict, got {type(text_or_dict).__name__}', '')
+
+
+def _check_finite(value: Any, path: str = '') -> None:
+    """NaN and +-Infinity are not JSON (Python's json reads them): report the first one."""
+    if isinstance(value, float) and not math.isfinite(value):
+        raise SceneValidationError(f'{_name(path)} must be a finite number, got {_num(value)}',
+                                   path)
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) > 1e300:
+        raise SceneValidationError(
+            f'{_name(path)} must be a finite number, got an integer with {len(str(value))} '
+            f'digits', path)
+    if isinstance(value, dict):
+        for k, v in value.items():
+            _check_finite(v, _join(path, str(k)))
+    elif isinstance(value, list):
+        for i, v in enumerate(value):
+            _check_finite(v, _join(path, i))
+
+
+@lru_cache(maxsize=None)
+def _schemas() -> dict[str, dict[str, Any]]:
+    out = {}
+    for key in SCHEMA_IDS:
+        with open(schema_dir() / f'{key}.schema.json', encoding='utf-8') as f:
+            out[key] = json.load(f)
+    return out
+
+
+@lru_cache(maxsize=None)
+def _validator(key: str):
+    from jsonschema import Draft202012Validator
+    from referencing import Registry
+    from referencing.jsonschema import DRAFT202012
+
+    schemas = _schemas()
+    # No ``retrieve`` callable: a reference outside these three documents is an error,
+    # never a download.
+    registry = Registry().with_resources(
+        (s['$id'], DRAFT202012.create_resource(s)) for s in schemas.values())
+    return Draft202012Validator(schemas[key], registry=registry)
+
+
+def _schema_error_message(error, prefix: str) -> tuple[str, str]:
+    """(path, one-sentence message) for a jsonschema ValidationError."""
+    path = _path_of(prefix, error.absolute_path)
+    name = _name(path)
+    kw = error.validator
+    inst = error.instance
+    val = error.validator_value
+    if kw == 'required':
+        missing = [k for k in val if isinstance(inst, dict) and k not in inst]
+        key = missing[0] if missing else str(val)
+        path = _join(path, key)
+        return path, f'{path} is required but missing'
+    if kw in ('additionalProperties', 'unevaluatedProperties'):
+        known = set(error.schema.get('properties', {}))
+        extra = [k for k in inst if k not in known] if isinstance(inst, dict) else []
+        key = extra[0] if extra else '?'
+        epath = _join(path, key)
+        allowed = ', '.join(error.schema.get('properties', {})) or 'none'
+        return epath, (f'{epath} is not a known field of {name} (allowed fields: {allowed})')
+    if kw == 'type':
+        types = [val] if isinstance(val, str) else list(val)
+        expected = ' or '.join(_ARTICLE.get(t, t) for t in types)
+        return path, f'{name} must be {expected}, got {_json_type(inst)}'
+    if kw in ('minItems', 'maxItems'):
+        lo = error.schema.get('minItems')
+        hi = error.schema.get('maxItems')
+        if lo is not None and lo == hi:
+            need = f'exactly {lo}'
+        elif kw == 'minItems':
+            need = f'at least {val}'
+        else:
+            need = f'at most {val}'
+        noun = 'vertices' if path.endswith('floor') else 'entries'
+        return path, f'{name} must have {need} {noun}, got {len(inst)}'
+    if kw == 'minLength':
+        return path, f'{name} must not be empty'
+    bounds = {'minimum': 'at least', 'maximum': 'at most',
+              'exclusiveMinimum': 'greater than', 'exclusiveMaximum': 'less than'}
+    if kw in bounds:
+        unit = _unit(path)
+        return path, f'{name} must be {bounds[kw]} {_num(val)}{unit}, got {_num(inst)}{unit}'
+    text = ' '.join(str(error.message).split())
+    return path, f'{name} is invalid: {text}'
+
+
+def _check_schema(d: Any, key: str, prefix: str = '') -> None:
+    from jsonschema.exceptions import best_match
+
+    error = best_match(_validator(key).iter_errors(d))
+    if error is not None:
+        path, message = _schema_error_message(error, prefix)
+        raise SceneValidationError(message, path)
+
+
+# ----------------------------------------------------------------------------- room checks
+
+def _room_type(value: str, path: str) -> str:
+    try:
+        return resolve_room_type(value)
+    except KeyError:
+        raise SceneValidationError(
+            f'{path} {value!r} is not a known room type (expected one of '
+            f'{", ".join(ROOM_TYPES)}, or an alias such as \'living room\')', path) from None
+
+
+def _check_floor(points: list[list[float]], room_type: str, prefix: str) -> None:
+    path = _join(prefix, 'floor')
+    pts = [(float(x), float(y)) for x, y in points]
+    if len(pts) > 1 and math.dist(pts[0], pts[-1]) < MIN_VERTEX_SPACING:
+        pts = pts[:-1]          # an explicitly closed ring: the closing vertex is allowed
+    distinct = {(round(x / MIN_VERTEX_SPACING), round(y / MIN_VERTEX_SPACING)) for x, y in pts}
+    if len(distinct) < 3:
+        raise SceneValidationError(
+            f'{path} must have at least 3 distinct vertices, got {len(distinct)}', path)
+    for i in range(1, len(pts)):
+        if math.dist(pts[i], pts[i - 1]) < MIN_VERTEX_SPACING:
+            vpath = _join(path, i)
+            raise SceneValidationError(
+                f'{vpath} repeats the previous vertex ({_num(pts[i][0])}, {_num(pts[i][1])})',
+                vpath)
+    arr = np.asarray(pts)
+    centred = arr - arr.mean(axis=0)
+    extent = float(np.abs(centred).max())
+    if np.linalg.svd(centred, compute_uv=False)[-1] <= 1e-9 * max(extent, 1.0):
+        raise SceneValidationError(
+            f'{path} has zero area: all its vertices lie on one line', path)
+    poly = shapely.Polygon(pts)
+    if not poly.is_valid:
+        reason = shapely.is_valid_reason(poly)
+        where = ''
+        if '[' in reason:
+            coords = reason[reason.index('[') + 1:reason.rindex(']')].split()
+            try:
+                where = f' near ({_num(float(coords[0]))}, {_num(float(coords[1]))})'
+            except (ValueError, IndexError):
+                where = ''
+        raise SceneValidationError(
+            f'{path} is self-intersecting{where}: its edges must not cross or touch, so list '
+            f'the vertices in order around the room', path)
+    if poly.area < MIN_FLOOR_AREA:
+        raise SceneValidationError(
+            f'{path} encloses {_num(poly.area)} m², less than the {_num(MIN_FLOOR_AREA)} m² '
+            f'minimum of a room', path)
+    x0, y0, x1, y1 = poly.bounds
+    cap = ROOM_SIZE_CAP[room_type]
+    if x1 - x0 > cap + 1e-6 or y1 - y0 > cap + 1e-6:
+        raise SceneValidationError(
+            f'{path} is {_num(x1 - x0)} m x {_num(y1 - y0)} m, which does not fit the '
+            f'{_num(cap)} m x {_num(cap)} m square {_a(room_type)} may cover (ROOM_SIZE_CAP)',
+            path)
+
+
+def _check_openings(room: Room, prefix: str) -> None:
+    placed = []       # (path, wall index, start offset, end offset) of checked openings
+    named = ([(_join(_join(prefix, 'doors'), i), o) for i, o in enumerate(room.doors)]
+             + [(_join(_join(prefix, 'windows'), i), o) for i, o in enumerate(room.windows)])
+    for path, op in named:
+        top = op.sill + op.height
+        if top > room.wall_height + 1e-9:
+            what = (f'sill {_num(op.sill)} m + height {_num(op.height)} m'
+                    if op.kind == 'window' else f'height {_num(op.height)} m')
+            raise SceneValidationError(
+                f'{path} reaches {_num(top)} m ({what}), above the {_num(room.wall_height)} m '
+                f'wall height', path)
+        wall = room.wall_of(op, tol=OPENING_TOLERANCE)
+        if wall is None:
+            near = sorted(room.walls, key=lambda w: w.distance_to(op.position))
+            dist = near[0].distance_to(op.position)
+            if dist > OPENING_TOLERANCE:
+                raise SceneValidationError(
+                    f'{path} is not on any wall: its centre is {_num(dist)} m from the '
+                    f'nearest wall', path)
+            on_line = [w for w in near if w.distance_to(op.position) <= OPENING_TOLERANCE]
+            longest = max(on_line, key=lambda w: w.length)
+            wname = (f'the wall from {_join(_join(prefix, "floor"), longest.index)} to '
+                     f'{_join(_join(prefix, "floor"), (longest.index + 1) % len(room.walls))}')
+            if op.width > longest.length + OPENING_TOLERANCE:
+                raise SceneValidationError(
+                    f'{path} is wider ({_num(op.width)} m) than {wname} '
+                    f'({_num(longest.length)} m long)', path)
+            raise SceneValidationError(
+                f'{path} runs past the end of {wname}: its {_num(op.width)} m width must lie '
+                f'on one wall', path)
+        off = wall.offset_of(op.position)
+        lo, hi = off - op.width / 2.0, off + op.width / 2.0
+        for other_path, other_wall, olo, ohi in placed:
+            overlap = min(hi, ohi) - max(lo, olo)
+            if other_wall == wall.index and overlap > OPENING_TOLERANCE:
+                raise SceneValidationError(
+                    f'{path} overlaps {other_path} on the same wall by {_num(overlap)} m',
+                    path)
+        placed.append((path, wall.index, lo, hi))
+
+
+def _build_room(d: dict[str, Any], prefix: str) -> Room:
+    """The Room of an (already schema-valid) room dict, after the geometric checks."""
+    room_type = _room_type(d['room_type'], _join(prefix, 'room_type'))
+    _check_floor(d['floor'], room_type, prefix)
+    room = Room(room_type, ccw(d['floor']),
+                float(d.get('wall_height', DEFAULT_WALL_HEIGHT)),
+                tuple(Opening.from_dict('door', o) for o in d.get('doors', [])),
+                tuple(Opening.from_dict('window', o) for o in d.get('windows', [])))
+    _check_openings(room, prefix)
+    return room
+
+
+# ----------------------------------------------------------------------------- object checks
+
+def _range(lo: float, hi: float) -> str:
+    return f'{_num(lo * (1 - SIZE_SLACK))} to {_num(hi * (1 + SIZE_SLACK))} m'
+
+
+def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str) -> list[PlacedObject]:
+    """PlacedObjects of (already schema-valid) object dicts, checked against the room;
+    missing ids and model ids are filled in."""
+    spec = room_spec(room.room_type)
+    seen: dict[str, int] = {}
+    for i, d in enumerate(items):
+        path = _join(prefix, i)
+        category = d['category']
+        cpath = _join(path, 'category')
+        if category not in CATEGORIES:
+            raise SceneValidationError(
+                f'{cpath} {category!r} is not a known category', cpath)
+        if category not in spec:
+            raise SceneValidationError(
+                f'{cpath} {category!r} is not a category of {_a(room.room_type)} '
+                f'({_a(room.room_type)} may hold: {", ".join(spec.names)})', cpath)
+        info = CATEGORIES[category]
+        w, dep, h = (float(v) for v in d['size'])
+        if not info.size_is_plausible(w, dep, h, SIZE_SLACK):
+            spath = _join(path, 'size')
+            bad = [f'{label} {_num(v)} m is outside {_range(*rng)}'
+                   for label, v, rng in (('width', w, info.width), ('depth', dep, info.depth),
+                                         ('height', h, info.height))
+                   if not rng[0] * (1 - SIZE_SLACK) <= v <= rng[1] * (1 + SIZE_SLACK)]
+            raise SceneValidationError(
+                f'{spath} is not plausible for {_a(category)}: {"; ".join(bad)}', spath)
+        x, y, z = (float(v) for v in d['position'])
+        if z < -FLOOR_TOLERANCE:
+            zpath = _join(_join(path, 'position'), 2)
+            raise SceneValidationError(
+                f'{zpath} is {_num(z)} m, below the floor (z is the bottom of the object)',
+                zpath)
+        outside = room.polygon.distance(shapely.Point(x, y))
+        if outside > FLOOR_TOLERANCE:
+            ppath = _join(path, 'position')
+            raise SceneValidationError(
+                f'{ppath} is outside the floor: the centre ({_num(x)}, {_num(y)}) is '
+                f'{_num(outside)} m outside the room', ppath)
+        if d.get('model_id') is not None:
+            mpath = _join(path, 'model_id')
+            try:
+                model = catalog.get(d['model_id'])
+            except KeyError:
+                raise SceneValidationError(
+                    f'{mpath} {d["model_id"]!r} is not a catalog model id', mpath) from None
+            if model.category != category:
+                raise SceneValidationError(
+                    f'{mpath} {d["model_id"]!r} is {_a(model.category)} model, not '
+                    f'{_a(category)}', mpath)
+        if d.get('id') is not None:
+            ipath = _join(path, 'id')
+            if d['id'] in seen:
+                raise SceneValidationError(
+                    f'{ipath} {d["id"]!r} is already the id of {_join(prefix, seen[d["id"]])}',
+                    ipath)
+            seen[d['id']] = i
+
+    for i, d in enumerate(items):
+        path = _join(prefix, i)
+        spath = _join(path, 'support')
+        category = d['category']
+        support = d.get('support')
+        if CATEGORIES[category].tier == 'first':
+            if support is not None:
+                raise SceneValidationError(
+                    f'{spath} must be absent because {_a(category)} stands on the floor (first '
+                    f'tier), got {support!r}', spath)
+            continue
+        parents = spec.supports(category)
+        if support is None:
+            raise SceneValidationError(
+                f'{spath} is required because {_a(category)} stands on another object (one of '
+                f'{", ".join(parents)})', spath)
+        if support not in seen:
+            raise SceneValidationError(
+                f'{spath} {support!r} is not the id of any object in the scene', spath)
+        if seen[support] == i:
+            raise SceneValidationError(f'{spath} names the object itself', spath)
+        parent_category = items[seen[support]]['category']
+        if parent_category not in parents:
+            raise SceneValidationError(
+                f'{spath} {support!r} is {_a(parent_category)}, which cannot hold '
+                f'{_a(category)} in {_a(room.room_type)} (allowed: {", ".join(parents)})', spath)
+
+    objects: list[PlacedObject] = []
+    for d in _fill_ids(items, room):
+        size = tuple(float(v) for v in d['size'])
+        model_id = d.get('model_id')
+        if model_id is None:
+            model_id = catalog.nearest(d['category'], size[0], size[1]).model_id
+        objects.append(PlacedObject(str(d['id']), d['category'], model_id,
+                                    tuple(float(v) for v in d['position']), float(d['yaw']),
+                                    size, d.get('support')))
+    return objects
+
+
+def _fill_ids(items: list[dict[str, Any]], room: Room) -> list[dict[str, Any]]:
+    """Copies of the object dicts with ``id`` filled in where missing (Scene.new_id order:
+    given ids are reserved first, then missing ones are assigned in list order)."""
+    given = [PlacedObject(str(d['id']), d['category'], '', (0.0, 0.0, 0.0), 0.0,
+                          (1.0, 1.0, 1.0)) for d in items if d.get('id') is not None]
+    scratch = Scene(room, given)
+    out = []
+    for d in items:
+        d = dict(d)
+        if d.get('id') is None:
+            d['id'] = scratch.new_id(d['category'])
+            scratch.objects.append(PlacedObject(d['id'], d['category'], '', (0.0, 0.0, 0.0),
+                                                0.0, (1.0, 1.0, 1.0)))
+        out.append(d)
+    return out
+
+
+# ----------------------------------------------------------------------------- public API
+
+def validate_layout_dict(d: Any) -> None:
+    """Raise SceneValidationError unless ``d`` is a valid room layout (objects optional)."""
+    _layout_to_scene(_plain(d))
+
+
+def validate_scene_dict(d: Any) -> None:
+    """Raise SceneValidationError unless ``d`` is a valid scene dict."""
+    _scene_from_dict(_plain(d))
+
+
+def _layout_to_scene(d: Any) -> Scene:
+    _check_finite(d)
+    _check_schema(d, 'room_layout')
+    room = _build_room(d, '')
+    items = d.get('objects', [])
+    objects = _build_objects(items, room, 'objects')
+    return Scene(room, objects)
+
+
+def _scene_from_dict(d: Any) -> Scene:
+    _check_finite(d)
+    _check_schema(d, 'scene')
+    room = _build_room(d['room'], 'room')
+    objects = _build_objects(d.get('objects', []), room, 'objects')
+    return Scene(room, objects, dict(d.get('meta', {})))
+
+
+def parse_room_layout(text_or_dict: Any) -> Scene:
+    """A room layout (JSON text, bytes or dict), possibly with objects, as a validated Scene.
+
+    Missing object ids are assigned with ``Scene.new_id`` and missing model ids with
+    ``catalog.nearest``; the room type becomes its canonical name. The scene's meta is empty.
+    """
+    return _layout_to_scene(_load(text_or_dict))
+
+
+def parse_scene(text_or_dict: Any) -> Scene:
+    """A scene (JSON text, bytes or dict, as written by ``dump_scene``) as a validated Scene."""
+    return _scene_from_dict(_load(text_or_dict))
+
+
+def load_scene(path: str | os.PathLike) -> Scene:
+    """Read a scene file; a file whose top level has no ``"room"`` is read as a room layout.
+
+    I/O errors (a missing file, ...) propagate as OSError.
+    """
+    d = _load(Path(path).read_text(encoding='utf-8'))
+    if isinstance(d, dict) and 'room' not in d:
+        return _layout_to_scene(d)
+    return _scene_from_dict(d)
+
+
+def dump_scene(scene: Scene) -> str:
+    """The scene as JSON text, validated first (an invalid scene raises
+    SceneValidationError, so nothing invalid is ever written)."""
+    d = _plain(scene.to_dict())
+    _scene_from_dict(d)
+    try:
+        return _format(d)
+    except (TypeError, ValueError) as e:
+        raise SceneValidationError(
+            f'meta cannot be written as JSON: {" ".join(str(e).split())}', 'meta') from None
+
+
+def _format(value: Any, indent: int = 0) -> str:
+    """JSON with an indented structure but numeric arrays (points, sizes) on one line."""
+    flat = json.dumps(value, allow_nan=False, ensure_ascii=False, separators=(', ', ': '))
+    if not isinstance(value, (dict, list)) or (
+            len(flat) + indent <= 96 and not _has_dict(value)) or not value:
+        return flat
+    pad, inner = ' ' * indent, ' ' * (indent + 2)
+    if isinstance(value, list):
+        body = ',\n'.join(inner + _format(v, indent + 2) for v in value)
+        return f'[\n{body}\n{pad}]'
+    body = ',\n'.join(f'{inner}{json.dumps(str(k), ensure_ascii=False)}: '
+                      f'{_format(v, indent + 2)}' for k, v in value.items())
+    return f'{{\n{body}\n{pad}}}'
+
+
+def _has_dict(value: Any) -> bool:
+    if isinstance(value, dict):
+        return True
+    return isinstance(value, list) and any(_has_dict(v) for v in value)
+
+
+def save_scene(scene: Scene, path: str | os.PathLike) -> None:
+    """Validate ``scene`` and write it as JSON to ``path`` (via a temporary file, so a failed
+    write never leaves a half-written scene behind)."""
+    text = dump_scene(scene)
+    path = Path(path)
+    tmp = path.with_name(path.name + '.tmp')
+    tmp.write_text(text + '\n', encoding='utf-8')
+    os.replace(tmp, path)

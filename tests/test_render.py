@@ -1,0 +1,326 @@
+"""Tests of the multi-channel top-down renderer (scene_synth_ros.render)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import shapely
+
+from scene_synth_ros import catalog
+from scene_synth_ros.categories import ROOM_SIZE_CAP, room_spec
+from scene_synth_ros.render import (COS, DOOR, FIRST_CATEGORY, HEIGHT, HEIGHT_SCALE, OBJECT,
+                                    ROOM, SIN, WALL, WINDOW, Frame, TopDownRenderer,
+                                    category_channel, channel_names, num_channels,
+                                    pixel_to_world, to_tensor, wall_reach, world_to_pixel)
+from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
+
+SQUARE = Room('bedroom', ((-3.0, -3.0), (3.0, -3.0), (3.0, 3.0), (-3.0, 3.0)))
+# 6.4 m / 64 px: 0.1 m a pixel, pixel centres at (k - 31.5) * 0.1 m.
+FRAME_64 = Frame((0.0, 0.0), 0.0, 6.4, 64)
+
+
+def obj(category, x, y, yaw, width, depth, height=0.5, z=0.0, oid=None, support=None):
+    return PlacedObject(oid or f'{category}_{x}_{y}', category,
+                        catalog.variants(category)[0].model_id, (x, y, z), yaw,
+                        (width, depth, height), support)
+
+
+def l_room(**kw) -> Room:
+    """An L-shaped 5 x 4 m bedroom without its 2 x 1.5 m top-right corner (17 m^2)."""
+    return Room('bedroom', ((0.0, 0.0), (5.0, 0.0), (5.0, 2.5), (3.0, 2.5), (3.0, 4.0),
+                            (0.0, 4.0)), **kw)
+
+
+def furnished_l_scene() -> Scene:
+    room = l_room(doors=(Opening('door', (4.0, 0.0), 0.9, 2.1),),
+                  windows=(Opening('window', (0.0, 2.0), 1.2, 1.3, 0.9),
+                           Opening('window', (5.0, 1.2), 1.0, 1.3, 0.9)))
+    bed = obj('double bed', 1.55, 2.93, -math.pi / 2, 1.6, 2.05, 1.0, oid='bed')
+    objs = [
+        bed,
+        obj('stand', 0.33, 3.71, -math.pi / 2, 0.5, 0.42, 0.55, oid='stand'),
+        obj('table lamp', 0.33, 3.71, 0.2, 0.3, 0.3, 0.5, z=0.55, oid='lamp',
+            support='stand'),
+        obj('wardrobe', 4.67, 1.3, math.pi, 1.6, 0.6, 2.1, oid='wardrobe'),
+        obj('desk', 2.1, 0.33, math.pi / 2, 1.2, 0.62, 0.75, oid='desk'),
+        obj('office chair', 2.07, 0.95, -1.3, 0.6, 0.6, 1.0, oid='chair'),
+        obj('book', 1.52, 2.61, 0.7, 0.22, 0.27, 0.05, z=1.0, oid='book', support='bed'),
+    ]
+    return Scene(room, objs)
+
+
+def transform_scene(scene: Scene, point, yaw) -> Scene:
+    """The scene moved rigidly by the inverse of (translate to ``point``, rotate by ``yaw``)."""
+    c, s = math.cos(yaw), math.sin(yaw)
+
+    def tf(p):
+        dx, dy = p[0] - point[0], p[1] - point[1]
+        return (c * dx + s * dy, -s * dx + c * dy)
+
+    room = scene.room
+    new_room = Room(room.room_type, tuple(tf(p) for p in room.floor), room.wall_height,
+                    tuple(Opening(o.kind, tf(o.position), o.width, o.height, o.sill)
+                          for o in room.doors),
+                    tuple(Opening(o.kind, tf(o.position), o.width, o.height, o.sill)
+                          for o in room.windows))
+    objs = []
+    for o in scene.objects:
+        x, y = tf(o.position)
+        objs.append(PlacedObject(o.id, o.category, o.model_id, (x, y, o.position[2]),
+                                 o.yaw - yaw, o.size, o.support))
+    return Scene(new_room, objs)
+
+
+def iou(a, b) -> float:
+    a, b = a > 0.5, b > 0.5
+    return (a & b).sum() / max(1, (a | b).sum())
+
+
+# ---------------------------------------------------------------------------------------------
+
+def test_channel_layout():
+    names = room_spec('bedroom').names
+    assert num_channels('bedroom') == 8 + len(names) == 46
+    assert (ROOM, WALL, OBJECT, HEIGHT, SIN, COS, DOOR, WINDOW, FIRST_CATEGORY) == tuple(range(9))
+    assert channel_names('bedroom')[FIRST_CATEGORY:] == names
+    assert category_channel('bedroom', names[0]) == FIRST_CATEGORY
+    assert category_channel('bedroom', 'double bed') == FIRST_CATEGORY + names.index('double bed')
+    img = TopDownRenderer(32).render(Scene(SQUARE, []))
+    assert img.shape == (46, 32, 32) and img.dtype == np.float32
+    assert to_tensor(img).shape == (46, 32, 32)
+
+
+def test_axis_aligned_box_exact_pixels():
+    # Depth 1.0 m along x, width 0.5 m along y, centred at (1.03, -0.52):
+    # x in [0.53, 1.53] -> columns with 0.53 <= (j - 31.5) * 0.1 <= 1.53 -> j = 37..46;
+    # y in [-0.77, -0.27] -> rows with -0.77 <= (i - 31.5) * 0.1 <= -0.27 -> i = 24..28.
+    scene = Scene(SQUARE, [obj('desk', 1.03, -0.52, 0.0, 0.5, 1.0, 0.75)])
+    img = TopDownRenderer().render(scene, FRAME_64)
+    expected = np.zeros((64, 64), bool)
+    expected[24:29, 37:47] = True
+    assert np.array_equal(img[OBJECT] > 0, expected)
+    assert np.array_equal(img[category_channel('bedroom', 'desk')] > 0, expected)
+    others = [c for c in range(FIRST_CATEGORY, img.shape[0])
+              if c != category_channel('bedroom', 'desk')]
+    assert not img[others].any()
+
+
+def test_pixel_centre_rule_on_boundary_counts_as_inside():
+    # Box edges exactly through pixel centres: x in [-0.05, 0.25] covers centres of columns
+    # 31..34 (-0.05, 0.05, 0.15, 0.25), y in [0.05, 0.15] covers rows 32..33.
+    scene = Scene(SQUARE, [obj('desk', 0.10, 0.10, 0.0, 0.10, 0.30)])
+    img = TopDownRenderer().render(scene, FRAME_64)
+    rows, cols = np.nonzero(img[OBJECT])
+    assert set(rows) == {32, 33} and set(cols) == {31, 32, 33, 34}
+    assert len(rows) == 8
+
+
+def test_rotated_box_is_transposed_footprint():
+    r = TopDownRenderer()
+    a = r.render(Scene(SQUARE, [obj('desk', 0.73, -1.21, 0.0, 0.55, 1.37)]), FRAME_64)
+    b = r.render(Scene(SQUARE, [obj('desk', -1.21, 0.73, math.pi / 2, 0.55, 1.37)]), FRAME_64)
+    assert a[OBJECT].sum() > 50
+    assert np.array_equal(a[OBJECT], b[OBJECT].T)
+    m = b[OBJECT] > 0
+    assert np.allclose(b[SIN][m], 1.0) and np.allclose(b[COS][m], 0.0, atol=1e-7)
+    assert np.allclose(a[SIN][a[OBJECT] > 0], 0.0) and np.allclose(a[COS][a[OBJECT] > 0], 1.0)
+
+
+def test_rotated_box_matches_brute_force_geometry():
+    rng = np.random.default_rng(3)
+    r = TopDownRenderer()
+    frame = Frame((0.2, -0.1), 0.37, 6.4, 64)
+    centres = pixel_to_world(frame, np.stack(np.meshgrid(np.arange(64), np.arange(64),
+                                                         indexing='ij'), -1))
+    for _ in range(20):
+        o = obj('desk', *rng.uniform(-2, 2, 2), rng.uniform(-math.pi, math.pi),
+                *rng.uniform(0.2, 1.8, 2))
+        img = r.render(Scene(SQUARE, [o]), frame)
+        expected = shapely.intersects_xy(o.footprint(), centres[..., 0], centres[..., 1])
+        assert np.array_equal(img[OBJECT] > 0, expected)
+
+
+def test_height_sin_cos_and_second_tier_wins():
+    bed = obj('double bed', 0.0, 0.0, 0.0, 1.6, 2.0, 1.0, oid='bed')
+    lamp = obj('table lamp', 0.3, 0.2, 0.6, 0.4, 0.4, 0.5, z=1.0, oid='lamp', support='bed')
+    # Parent after child in the scene: drawing order must follow the top height.
+    img = TopDownRenderer().render(Scene(SQUARE, [lamp, bed]), FRAME_64)
+    bed_px = img[category_channel('bedroom', 'double bed')] > 0
+    lamp_px = img[category_channel('bedroom', 'table lamp')] > 0
+    assert lamp_px.sum() > 4 and (lamp_px & ~bed_px).sum() == 0
+    assert np.array_equal(img[OBJECT] > 0, bed_px | lamp_px)
+    only_bed = bed_px & ~lamp_px
+    assert np.allclose(img[HEIGHT][only_bed], 1.0 / HEIGHT_SCALE)
+    assert np.allclose(img[SIN][only_bed], 0.0) and np.allclose(img[COS][only_bed], 1.0)
+    assert np.allclose(img[HEIGHT][lamp_px], 1.5 / HEIGHT_SCALE)
+    assert np.allclose(img[SIN][lamp_px], math.sin(0.6))
+    assert np.allclose(img[COS][lamp_px], math.cos(0.6))
+    empty = ~(bed_px | lamp_px)
+    assert not img[HEIGHT][empty].any() and not img[SIN][empty].any()
+    assert not img[COS][empty].any()
+
+
+@pytest.mark.parametrize('k', [0, 1, 2, 3])
+def test_local_frame_equals_inverse_transformed_scene_right_angles(k):
+    scene = furnished_l_scene()
+    point, yaw = (1.83, 1.27), k * math.pi / 2
+    r = TopDownRenderer()
+    local = r.render_local(scene, point, yaw)
+    moved = transform_scene(scene, point, yaw)
+    ref = r.render(moved, Frame((0.0, 0.0), 0.0, ROOM_SIZE_CAP['bedroom'], 64))
+    assert local[OBJECT].sum() > 100 and local[DOOR].sum() > 0 and local[WALL].sum() > 50
+    np.testing.assert_allclose(local, ref, atol=1e-6)
+    assert np.array_equal(local[[ROOM, WALL, OBJECT, DOOR, WINDOW]] > 0,
+                          ref[[ROOM, WALL, OBJECT, DOOR, WINDOW]] > 0)
+
+
+@pytest.mark.parametrize('yaw', [0.4, -2.2, 3.0])
+def test_local_frame_equals_inverse_transformed_scene_general_yaw(yaw):
+    scene = furnished_l_scene()
+    point = (2.4, 1.6)
+    r = TopDownRenderer()
+    local = r.render_local(scene, point, yaw)
+    ref = r.render(transform_scene(scene, point, yaw),
+                   Frame((0.0, 0.0), 0.0, ROOM_SIZE_CAP['bedroom'], 64))
+    for ch in (ROOM, WALL, OBJECT, DOOR, WINDOW, category_channel('bedroom', 'double bed')):
+        assert iou(local[ch], ref[ch]) > 0.95, ch
+
+
+def test_local_frame_orientation():
+    # An object 1 m ahead of the point along the frame's yaw lands right of the image centre
+    # (column axis = the yaw direction); 1 m to its left lands above (row axis).
+    yaw = 0.9
+    ahead = obj('stool', 2.0 + math.cos(yaw), 2.0 + math.sin(yaw), 0.0, 0.3, 0.3)
+    left = obj('ottoman', 2.0 - math.sin(yaw), 2.0 + math.cos(yaw), 0.0, 0.3, 0.3)
+    img = TopDownRenderer(64).render_local(Scene(l_room(), [ahead, left]), (2.0, 2.0), yaw)
+    m = ROOM_SIZE_CAP['bedroom'] / 64
+    rows, cols = np.nonzero(img[category_channel('bedroom', 'stool')])
+    assert abs(rows.mean() + 0.5 - 32) < 0.5 and abs((cols.mean() + 0.5 - 32) * m - 1.0) < 0.05
+    rows, cols = np.nonzero(img[category_channel('bedroom', 'ottoman')])
+    assert abs(cols.mean() + 0.5 - 32) < 0.5 and abs((rows.mean() + 0.5 - 32) * m - 1.0) < 0.05
+
+
+@pytest.mark.parametrize('yaw', [0.0, 0.3])
+def test_whole_pixel_translation_shifts_image(yaw):
+    scene = furnished_l_scene()
+    r = TopDownRenderer()
+    f1 = Frame((2.5, 2.0), yaw, 6.0, 64)
+    kx, ky = 5, 3
+    shift = f1.to_world(np.array([kx, ky]) * f1.metres_per_pixel) - np.array(f1.centre)
+    f2 = Frame(tuple(np.array(f1.centre) + shift), yaw, 6.0, 64)
+    a, b = r.render(scene, f1), r.render(scene, f2)
+    assert a[OBJECT].sum() > 100
+    np.testing.assert_allclose(b[:, :64 - ky, :64 - kx], a[:, ky:, kx:], atol=1e-6)
+    assert np.array_equal(b[:, :64 - ky, :64 - kx] > 0, a[:, ky:, kx:] > 0)
+
+
+@pytest.mark.parametrize('res, tol', [(64, 0.03), (256, 0.01)])
+def test_l_shaped_room_mask_area(res, tol):
+    room = l_room()
+    img = TopDownRenderer(res).render(Scene(room, []))
+    m = ROOM_SIZE_CAP['bedroom'] / res
+    assert abs(img[ROOM].sum() - room.area / m ** 2) < tol * room.area / m ** 2
+    # The missing corner is not floor; the wall is outside the floor and rings it.
+    frame = Frame.for_room(room, res)
+    i, j = world_to_pixel(frame, (4.2, 3.4))
+    assert img[ROOM, i, j] == 0
+    assert not (img[ROOM] * img[WALL]).any()
+    for wall in room.walls:
+        mid = wall.point_at(wall.length / 2) - wall.normal * 0.5 * wall_reach(frame)
+        i, j = world_to_pixel(frame, mid)
+        assert img[WALL, i, j] == 1 and img[ROOM, i, j] == 0
+        inside = wall.point_at(wall.length / 2) + wall.normal * 0.3
+        i, j = world_to_pixel(frame, inside)
+        assert img[ROOM, i, j] == 1 and img[WALL, i, j] == 0
+    # Every wall pixel is within the wall reach of the outline.
+    centres = pixel_to_world(frame, np.argwhere(img[WALL] > 0))
+    d = shapely.distance(room.polygon.exterior, shapely.points(centres))
+    assert d.max() <= wall_reach(frame) + 1e-9
+
+
+def test_doors_and_windows_land_on_the_wall():
+    scene = furnished_l_scene()
+    room = scene.room
+    r = TopDownRenderer()
+    frame = Frame.for_room(room, 64)
+    img = r.render(scene, frame)
+    for ch, openings in ((DOOR, room.doors), (WINDOW, room.windows)):
+        px = img[ch] > 0
+        assert (px & (img[WALL] > 0)).sum() > 0
+        centres = pixel_to_world(frame, np.argwhere(px))
+        lines = [shapely.LineString([room.wall_of(o).point_at(room.wall_of(o).offset_of(
+            o.position) - o.width / 2), room.wall_of(o).point_at(room.wall_of(o).offset_of(
+                o.position) + o.width / 2)]) for o in openings]
+        d = np.min([shapely.distance(line, shapely.points(centres)) for line in lines], 0)
+        assert d.max() <= max(0.15, wall_reach(frame)) + 1e-9
+        for o in openings:
+            wall = room.wall_of(o)
+            # Wall pixels along the opening are covered.
+            for t in (-0.3, 0.0, 0.3):
+                p = np.asarray(o.position) + wall.direction * t * o.width \
+                    - wall.normal * 0.5 * wall_reach(frame)
+                i, j = world_to_pixel(frame, p)
+                assert img[ch, i, j] == 1 and img[WALL, i, j] == 1
+            area = o.width * 2 * max(0.15, wall_reach(frame)) / frame.metres_per_pixel ** 2
+            assert 0.5 * area < px.sum()
+    assert img[DOOR].sum() < img[WINDOW].sum()
+
+
+def test_room_exceeding_cap_raises():
+    big = Room('bedroom', ((0, 0), (6.5, 0), (6.5, 3), (0, 3)))
+    with pytest.raises(ValueError, match='6 m square'):
+        TopDownRenderer().render(Scene(big, []))
+    with pytest.raises(ValueError):
+        Frame.for_room(Room('bathroom', ((0, 0), (3, 0), (3, 5.2), (0, 5.2))), 64)
+    exact = Room('bedroom', ((0, 0), (6.0, 0), (6.0, 6.0), (0, 6.0)))
+    assert Frame.for_room(exact, 64).centre == (3.0, 3.0)
+    # A local view is not limited by the cap.
+    assert TopDownRenderer().render_local(Scene(big, []), (1.0, 1.0), 0.0).shape[1:] == (64, 64)
+
+
+def test_unknown_category_raises():
+    with pytest.raises(ValueError, match='toilet'):
+        TopDownRenderer().render(Scene(SQUARE, [obj('toilet', 0, 0, 0, 0.4, 0.7)]), FRAME_64)
+
+
+def test_pixel_world_round_trip():
+    frame = Frame((1.3, -0.4), 0.77, 6.0, 64)
+    ij = np.array([[0, 0], [10, 50], [63, 63], [31, 7]])
+    xy = pixel_to_world(frame, ij)
+    assert np.array_equal(world_to_pixel(frame, xy), ij)
+    assert np.allclose(world_to_pixel(frame, xy, continuous=True), ij)
+    # Nudging within a pixel keeps the pixel.
+    m = frame.metres_per_pixel
+    assert np.array_equal(world_to_pixel(frame, xy + 0.4 * m * np.array([0.7, -0.7])), ij)
+    # Frame at yaw 0: pixel (0, 0) is the bottom-left corner (min x, min y).
+    f0 = Frame((0.0, 0.0), 0.0, 6.4, 64)
+    assert np.allclose(pixel_to_world(f0, (0, 0)), (-3.15, -3.15))
+    assert np.allclose(pixel_to_world(f0, (0, 63)), (3.15, -3.15))
+    assert np.array_equal(f0.world_to_pixel((0.001, 0.001)), (32, 32))
+
+
+def test_room_cache_is_reused_and_safe():
+    scene = furnished_l_scene()
+    r = TopDownRenderer(64)
+    a = r.render(scene)
+    frame = Frame.for_room(scene.room, 64)
+    layers = r.static_layers(scene.room, frame)
+    # An equal room built anew hits the same cache entry.
+    same = Room.from_dict(scene.room.to_dict())
+    assert r.static_layers(same, frame) is layers
+    a[:] = 0.0                                  # the caller owns the image it gets
+    b = r.render(scene)
+    assert b[ROOM].sum() > 1000
+    r.clear_cache()
+    c = r.render(scene)
+    assert np.array_equal(b, c)
+    # A different room is not confused with the cached one.
+    other = Scene(Room('bedroom', ((0, 0), (3, 0), (3, 3), (0, 3))), [])
+    assert r.render(other)[ROOM].sum() < b[ROOM].sum()
+
+
+def test_object_outside_frame_is_skipped():
+    far = obj('desk', 30.0, 30.0, 0.3, 1.0, 0.6)
+    img = TopDownRenderer().render(Scene(SQUARE, [far]), FRAME_64)
+    assert not img[OBJECT].any()
