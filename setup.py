@@ -25,7 +25,7 @@ setup(
         ('share/' + PACKAGE + '/examples', _files('examples/*.json')),
         ('share/' + PACKAGE + '/weights', _files(PACKAGE + '/weights/*')),
     ],
-    package_data={PACKAGE: ['weights/*']},
+    package_data={PACKAGE: ['weights/*', 'corpus/calibration.json']},
     # Python dependencies are pinned once, in requirements.txt; colcon users get the
     # ROS ones from package.xml.
     install_requires=['setuptools'],
