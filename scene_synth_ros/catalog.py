@@ -14,30 +14,19 @@ import zlib
 import numpy as np
 
 from .categories import CATEGORIES
+from .scene import Sized
 
 VARIANTS_PER_CATEGORY = 8
 
 
 @dataclass(frozen=True)
-class ModelVariant:
+class ModelVariant(Sized):
     """One catalog model: a category, an id and its fixed dimensions."""
 
     model_id: str
     category: str
     size: tuple[float, float, float]   # (width, depth, height), as PlacedObject.size
     style: int                         # which of the category's shape styles the mesh uses
-
-    @property
-    def width(self) -> float:
-        return self.size[0]
-
-    @property
-    def depth(self) -> float:
-        return self.size[1]
-
-    @property
-    def height(self) -> float:
-        return self.size[2]
 
 
 def slug(category: str) -> str:

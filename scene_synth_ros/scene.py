@@ -182,17 +182,10 @@ def box_corners(cx: float, cy: float, yaw: float, width: float, depth: float) ->
     return local @ rot.T + np.array([cx, cy])
 
 
-@dataclass
-class PlacedObject:
-    """One object in a scene."""
+class Sized:
+    """Named access to a ``size`` of (width, depth, height), the package's convention."""
 
-    id: str
-    category: str
-    model_id: str
-    position: tuple[float, float, float]
-    yaw: float
-    size: tuple[float, float, float]          # (width, depth, height)
-    support: str | None = None                # id of the supporting parent (second tier)
+    size: tuple[float, float, float]
 
     @property
     def width(self) -> float:
@@ -205,6 +198,19 @@ class PlacedObject:
     @property
     def height(self) -> float:
         return self.size[2]
+
+
+@dataclass
+class PlacedObject(Sized):
+    """One object in a scene."""
+
+    id: str
+    category: str
+    model_id: str
+    position: tuple[float, float, float]
+    yaw: float
+    size: tuple[float, float, float]          # (width, depth, height)
+    support: str | None = None                # id of the supporting parent (second tier)
 
     @property
     def top(self) -> float:

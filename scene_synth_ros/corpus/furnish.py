@@ -149,6 +149,17 @@ def _beside_any(lay: Layout, v: ModelVariant, anchors, gap=(0.02, 0.1)) -> Place
     return None
 
 
+def _ahead_of_any(lay, v, anchors, distance, lateral_sd: float = 0.0):
+    for anchor in lay.first_tier(*anchors):
+        gap = lay.rng.uniform(*distance)
+        lateral = lay.rng.normal(0, lateral_sd) if lateral_sd else 0.0
+        obj = lay.ahead(anchor, v, gap, lateral)
+        if obj is not None:
+            return obj
+    return None
+
+
+
 def _rule_main_bed(lay, v):
     return _first(lambda: lay.against_wall(v, 'centre'), lambda: lay.against_wall(v, 'any'))
 
@@ -183,14 +194,8 @@ def _rule_tv_stand(lay, v):
 
 
 def _rule_coffee_table(lay, v):
-    def before_sofa():
-        for sofa in lay.first_tier('sofa', 'daybed'):
-            obj = lay.ahead(sofa, v, lay.rng.uniform(0.35, 0.5),
-                            lay.rng.normal(0, 0.05))
-            if obj is not None:
-                return obj
-        return None
-    return _first(before_sofa, lambda: lay.free(v, tries=20))
+    return _first(lambda: _ahead_of_any(lay, v, ('sofa', 'daybed'), (0.35, 0.5), 0.05),
+                  lambda: lay.free(v, tries=20))
 
 
 def _rule_office_chair(lay, v):
@@ -216,32 +221,18 @@ def _rule_stool(lay, v):
                   lambda: lay.against_wall(v, 'any'))
 
 
+
 def _rule_bench(lay, v):
-    def at_foot():
-        for bed in lay.first_tier('double bed', 'single bed'):
-            obj = lay.ahead(bed, v, lay.rng.uniform(0.03, 0.15))
-            if obj is not None:
-                return obj
-        return None
-    return _first(at_foot, lambda: _seat_at(lay, v, ('piano',)),
+    return _first(lambda: _ahead_of_any(lay, v, ('double bed', 'single bed'), (0.03, 0.15)),
+                  lambda: _seat_at(lay, v, ('piano',)),
                   lambda: lay.against_wall(v, 'any'))
 
 
 def _rule_ottoman(lay, v):
-    def before_seat():
-        for seat in lay.first_tier('sofa chair', 'armchair', 'sofa'):
-            obj = lay.ahead(seat, v, lay.rng.uniform(0.1, 0.3))
-            if obj is not None:
-                return obj
-        return None
-
-    def at_foot():
-        for bed in lay.first_tier('double bed', 'single bed', 'daybed'):
-            obj = lay.ahead(bed, v, lay.rng.uniform(0.05, 0.2))
-            if obj is not None:
-                return obj
-        return None
-    return _first(at_foot, before_seat, lambda: lay.against_wall(v, 'any'))
+    return _first(
+        lambda: _ahead_of_any(lay, v, ('double bed', 'single bed', 'daybed'), (0.05, 0.2)),
+        lambda: _ahead_of_any(lay, v, ('sofa chair', 'armchair', 'sofa'), (0.1, 0.3)),
+        lambda: lay.against_wall(v, 'any'))
 
 
 def _rule_easy_chair(lay, v):
