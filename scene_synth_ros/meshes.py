@@ -11,9 +11,13 @@ per-vertex colours; the exporters write one primitive per material instead (glTF
 materials for ``.glb``, an ``.mtl`` file for ``.obj``), which is what simulators and viewers
 read most reliably.
 
-Public API: ``build_parts``, ``build_mesh``, ``model_scene``, ``export_model``,
-``export_catalog``, ``mesh_path``, ``scene_mesh``, ``object_transform``, ``render_preview``,
-``save_contact_sheet``.
+Coordinates are the package's (REP-103): metres, z up. Exported files keep that frame; a
+glTF consumer that insists on glTF's y-up convention must add its own root rotation.
+
+Public API: ``build_parts`` (named single-material parts), ``build_mesh`` (one vertex-coloured
+mesh), ``model_scene`` / ``export_model`` / ``export_catalog`` / ``mesh_path`` (files),
+``scene_mesh`` / ``object_transform`` / ``variant_for`` (whole scenes), ``render_image`` /
+``render_preview`` / ``save_contact_sheet`` (pictures for people), ``MATERIALS``.
 """
 from __future__ import annotations
 
@@ -73,11 +77,14 @@ MATERIALS: dict[str, Material] = {m.name: m for m in (
     _m('chrome', 214, 216, 220, metallic=1.0, roughness=0.15),
     _m('metal_dark', 58, 60, 66, metallic=0.6, roughness=0.45),
     _m('brass', 200, 160, 70, metallic=0.9, roughness=0.3),
-    _m('plastic_black', 34, 34, 38, roughness=0.5), _m('plastic_white', 240, 240, 236, roughness=0.4),
+    _m('plastic_black', 34, 34, 38, roughness=0.5),
+    _m('plastic_white', 240, 240, 236, roughness=0.4),
     _m('plastic_grey', 150, 152, 156, roughness=0.5), _m('rubber', 28, 28, 28, roughness=0.9),
-    _m('ceramic', 246, 246, 244, roughness=0.15), _m('ceramic_shadow', 200, 208, 214, roughness=0.15),
+    _m('ceramic', 246, 246, 244, roughness=0.15),
+    _m('ceramic_shadow', 200, 208, 214, roughness=0.15),
     _m('screen', 14, 16, 24, roughness=0.1), _m('screen_on', 40, 70, 110, roughness=0.1),
-    _m('glass', 196, 222, 234, 90, roughness=0.05), _m('glass_dark', 40, 52, 64, 200, roughness=0.05),
+    _m('glass', 196, 222, 234, 90, roughness=0.05),
+    _m('glass_dark', 40, 52, 64, 200, roughness=0.05),
     _m('mirror', 206, 220, 230, metallic=0.9, roughness=0.05),
     _m('water', 78, 150, 214, 140, roughness=0.05), _m('whiteboard', 252, 252, 252, roughness=0.2),
     _m('lacquer', 20, 20, 22, roughness=0.15), _m('lacquer_white', 244, 242, 238, roughness=0.15),
@@ -282,12 +289,30 @@ class _Builder:
         prof = [(r_in, z1), (r_in, z0), (r_out, z0), (r_out, z1), (r_in, z1)]
         return self.lathe(name, mat, prof, cx, cy, ey, n)
 
-    def torus(self, name, mat, c, major, minor, rot=None, n=16, m=6):
+    def torus(self, name, mat, c, major, minor, rot=None, n=16, m=6, scale=(1.0, 1.0, 1.0)):
         v, f = _unit_torus(round(minor / major, 4), n, m)
         v = v * major
         if rot is not None:
             v = v @ np.asarray(rot).T
-        return self.add(name, mat, v + np.asarray(c, float), f)
+        return self.add(name, mat, v * np.asarray(scale, float) + np.asarray(c, float), f)
+
+    def prism(self, name, mat, outline, z0, z1, cx=0.0, cy=0.0):
+        """Vertical prism over a convex outline [(x, y), ...] given counter-clockwise."""
+        pts = np.asarray(outline, float) + (cx, cy)
+        k = len(pts)
+        c = pts.mean(axis=0)
+        v = np.vstack([np.column_stack((pts, np.full(k, z0))),
+                       np.column_stack((pts, np.full(k, z1))),
+                       [[c[0], c[1], z0], [c[0], c[1], z1]]])
+        i = np.arange(k)
+        j = (i + 1) % k
+        cb, ct = 2 * k, 2 * k + 1
+        f = np.vstack([np.column_stack((i, j, j + k)), np.column_stack((i, j + k, i + k)),
+                       np.column_stack((np.full(k, ct), i + k, j + k)),
+                       np.column_stack((np.full(k, cb), j, i))])
+        if _signed_volume(v, f) < 0:
+            f = f[:, ::-1]
+        return self.add(name, mat, v, f)
 
     # -- editing -------------------------------------------------------------------------
     def transform_last(self, count: int, rot=None, pivot=(0, 0, 0), shift=(0, 0, 0)):
@@ -314,6 +339,24 @@ class _Builder:
             f.setflags(write=False)
             out.append(Part(name, mat, v, f))
         return tuple(out)
+
+
+def _rounded_rect(hx: float, hy: float, r: float, per_corner: int = 6) -> np.ndarray:
+    """Counter-clockwise outline of a rectangle (half sizes hx, hy) with corner radius r;
+    r = min(hx, hy) gives a stadium."""
+    r = min(r, hx, hy)
+    pts = []
+    for (cx, cy, a0) in ((hx - r, hy - r, 0.0), (-hx + r, hy - r, 90.0),
+                         (-hx + r, -hy + r, 180.0), (hx - r, -hy + r, 270.0)):
+        for t in np.linspace(a0, a0 + 90.0, per_corner + 1):
+            pts.append((cx + r * math.cos(math.radians(t)), cy + r * math.sin(math.radians(t))))
+    out = [pts[0]]
+    for p in pts[1:]:
+        if math.dist(p, out[-1]) > 1e-9:
+            out.append(p)
+    if math.dist(out[0], out[-1]) < 1e-9:
+        out.pop()
+    return np.asarray(out)
 
 
 HANDLE = 0.014     # how far handles and knobs stand proud of a front
@@ -406,7 +449,7 @@ def _bed(b: _Builder):
     blanket = b.pick('blanket_blue', 'blanket_rose', 'blanket_green')
     bx0 = xr0 + 0.36 * (xr1 - xr0)
     b.box('blanket', blanket, bx0, xr1, y0 + 0.01, y1 - 0.01, base_top + 0.05, mtop + 0.02)
-    b.box('blanket_fold', 'linen', bx0, bx0 + 0.13, y0 + 0.012, y1 - 0.012, mtop - 0.01,
+    b.box('blanket_fold', 'linen', bx0 - 0.006, bx0 + 0.13, y0 + 0.012, y1 - 0.012, mtop - 0.01,
           mtop + 0.035)
     n = 2 if W >= 1.25 else 1
     pw = (W - 0.14) / n
@@ -429,13 +472,13 @@ def _bunker_bed(b: _Builder):
         b.box('deck', mat, x0 + 0.01, x1 - 0.01, y0 + 0.01, y1 - 0.01, z0, z1)
         b.box('mattress', 'mattress', x0 + p, x1 - p, y0 + 0.03, y1 - 0.03, z1, z1 + 0.14)
         b.box('blanket', b.pick('blanket_blue', 'blanket_green', 'blanket_rose'),
-              x0 + 0.75, x1 - p, y0 + 0.02, y1 - 0.02, z1 + 0.06, z1 + 0.16)
+              x0 + 0.75, x1 - p + 0.01, y0 + 0.02, y1 - 0.02, z1 + 0.06, z1 + 0.16)
         b.sphere('pillow', 'linen', (x0 + p + 0.17, 0.0, z1 + 0.18), (0.14, W / 2 - 0.18, 0.05))
         b.box('head_panel', mat, x0 + 0.015, x0 + 0.045, y0 + p, y1 - p, z1,
               min(z1 + 0.4, H - 0.04))
     rail_z = (H - 0.2, H - 0.12)
     b.box('guard_rail', mat, x0 + p, x1 - p, y0 + 0.01, y0 + 0.05, *rail_z)
-    ladder_top = up + 0.28
+    ladder_top = up + 0.2
     r = 0.016
     if s == 0:
         b.box('guard_rail', mat, x0 + p, x1 - p, y1 - 0.05, y1 - 0.01, *rail_z)
@@ -541,7 +584,7 @@ def _wardrobe(b: _Builder):
     b.box('cornice', mat, x0, xf - HANDLE, y0, y1, H - 0.04, H)
     if s == 1:
         _legs_round(b, 'metal', x0 + 0.03, xf - 0.05, y0 + 0.03, y1 - 0.03, 0.0, plinth, r=0.02)
-        b.box('bottom', mat, x0, xf - HANDLE, y0, y1, plinth, plinth + 0.03)
+        b.box('bottom', mat, x0, xf - HANDLE - FRONT, y0, y1, plinth, plinth + 0.03)
     else:
         b.box('plinth', 'wood_dark' if s == 0 else 'shadow', x0, xf - 0.05, y0 + 0.02, y1 - 0.02,
               0.0, plinth)
@@ -553,7 +596,6 @@ def _wardrobe(b: _Builder):
             _drawer(b, front, hmat, y0 + k * W / 2, y0 + (k + 1) * W / 2, plinth, z_doors, xf)
     if s == 2:
         # sliding doors: two wide panels at two depths, recessed pull strips at the edges
-        half = W / 2.0
         b.box('door', front, xf - HANDLE - FRONT - 0.012, xf - HANDLE - 0.012, y0 + 0.004,
               0.04, z_doors, H - 0.045)
         b.box('door', 'mirror', xf - HANDLE - FRONT, xf - HANDLE, -0.04, y1 - 0.004, z_doors,
@@ -561,7 +603,6 @@ def _wardrobe(b: _Builder):
         for yh in (y0 + 0.05, y1 - 0.05):
             b.box('handle', hmat, xf - HANDLE, xf, yh - 0.01, yh + 0.01, z_doors + 0.3,
                   H - 0.4)
-        del half
         return
     dw = W / n
     for k in range(n):
@@ -868,7 +909,6 @@ def _desk(b: _Builder):
         for k in range(n):
             _drawer(b, top, hmat, y1 - pw, y1 - 0.01, 0.03 + k * dh, 0.03 + (k + 1) * dh, xf,
                     'bar')
-        b.box('plinth', 'shadow', x0 + 0.02, xf - 0.04, y1 - pw + 0.01, y1 - 0.02, 0.0, 0.03)
 
 
 def _coffee_table(b: _Builder):
@@ -885,10 +925,8 @@ def _coffee_table(b: _Builder):
         core = max(W - 2 * r, 0.0)
 
         def stadium(name, mat, z0, z1, shrink):
-            rr = r - shrink
-            b.box(name, mat, -rr, rr, -core / 2, core / 2, z0, z1)
-            for sgn in (-1, 1):
-                b.cyl(name, mat, 0.0, sgn * core / 2, z0, z1, rr, n=24)
+            b.prism(name, mat, _rounded_rect(D / 2 - shrink, W / 2 - shrink, r - shrink, 8),
+                    z0, z1)
 
         stadium('top', 'glass', H - 0.018, H, 0.0)
         stadium('frame', 'metal', H - 0.04, H - 0.018, 0.02)
@@ -1177,9 +1215,9 @@ def _upholstered(b: _Builder, kind: str):
         acc = b.pick('fabric_mustard', 'fabric_blue', 'fabric_red')
         for sgn in (-1, 1):
             yc = sgn * (W / 2 - arm_w - 0.2)
-            b.sphere('throw_pillow', acc, (x0 + back_t + 0.16, yc, sc + 0.17), (0.06, 0.17, 0.16),
-                     subdiv=2)
-            b.transform_last(1, _rot_y(-0.25), pivot=(x0 + back_t + 0.16, yc, sc + 0.17))
+            b.box('throw_pillow', acc, -0.05, 0.05, -0.2, 0.2, -0.19, 0.19)
+            b.transform_last(1, _rot_y(-0.3) @ _rot_x(-0.2 * sgn),
+                             shift=(x0 + back_t + 0.14, yc, sc + 0.2))
 
 
 # ---------------------------------------------------------------------------------------
@@ -1216,9 +1254,8 @@ def _table_lamp(b: _Builder):
     zs = 0.48 * H
     if s == 0:
         rb = R * 0.45
-        b.lathe('base', 'ceramic_shadow' if False else 'teal',
-                [(0, 0), (rb * 0.6, 0), (rb, zs * 0.35), (rb * 0.9, zs * 0.7), (rb * 0.35, zs * 0.9),
-                 (0.0, zs * 0.9)], n=20)
+        b.lathe('base', 'teal', [(0, 0), (rb * 0.6, 0), (rb, zs * 0.35), (rb * 0.9, zs * 0.7),
+                                 (rb * 0.35, zs * 0.9), (0.0, zs * 0.9)], n=20)
         b.cyl('stem', 'brass', 0, 0, zs * 0.88, zs + 0.12 * H, 0.01, n=8)
         b.frustum('shade', 'shade', 0, 0, zs, H, R, R * 0.62, n=24)
     elif s == 1:
@@ -1245,8 +1282,8 @@ def _loudspeaker(b: _Builder):
                 b.frustum('spike', 'metal', xa, ya, 0.0, base, 0.004, 0.015, n=8)
     else:
         b.box('plinth', 'plastic_black', x0, xf, y0, y1, 0.0, base)
-    b.box('cabinet', mat, x0, xf, y0 + (0.0 if s else 0.005), y1 - (0.0 if s else 0.005),
-          base, H)
+    b.box('cabinet', mat, x0, xf - (0.004 if s == 2 else 0.0), y0 + (0.0 if s else 0.005),
+          y1 - (0.0 if s else 0.005), base, H)
     if s == 2:
         b.box('baffle', 'fabric_dark', xf - 0.004, xf, y0 + 0.01, y1 - 0.01, base + 0.04, H - 0.03)
     rw = min(W * 0.36, 0.1)
@@ -1290,7 +1327,7 @@ def _pedestal_fan(b: _Builder):
                (0.006, R * 0.32, R * 0.78), _rot_x(a - math.pi / 2) @ _rot_z(0.25))
     b.ring('guard', 'plastic_grey', 0.0, 0.0, 0.0, 0.016, R - 0.016, R, n=28)
     b.transform_last(1, _rot_y(math.pi / 2), shift=(0.03, 0.0, zc))
-    b.xdisc('grille', b.pick('glass', 'glass', 'glass'), 0.07, 0.074, 0.0, zc, R - 0.02, n=28)
+    b.xdisc('grille', 'glass', 0.07, 0.074, 0.0, zc, R - 0.02, n=28)
     b.xdisc('badge', body, 0.074, 0.08, 0.0, zc, 0.04, n=12)
     for k in range(2):
         a = math.radians(45 + 90 * k)
@@ -1343,7 +1380,19 @@ def _laptop(b: _Builder):
     b.box('lid', shell, -t, 0.0, y0, y1, 0.0, length)
     b.box('screen', 'screen_on' if s == 0 else 'screen', 0.0, 0.0015, y0 + 0.012, y1 - 0.012,
           0.012, length - 0.012)
-    b.transform_last(2, _rot_y(-tilt), shift=(xh, 0.0, tb * 0.6))
+    n = 2
+    if s == 2:
+        # a logo on the back of the lid and a webcam above the screen
+        b.box('logo', 'plastic_white', -t - 0.001, -t, -0.02, 0.02, length * 0.5 - 0.02,
+              length * 0.5 + 0.02)
+        b.box('webcam', 'plastic_black', 0.0, 0.0015, -0.004, 0.004, length - 0.009,
+              length - 0.003)
+        n = 4
+    b.transform_last(n, _rot_y(-tilt), shift=(xh, 0.0, tb * 0.6))
+    if s == 1:
+        b.seg('hinge', 'plastic_black', (xh + 0.004, y0 + 0.03, tb * 0.6),
+              (xh + 0.004, y1 - 0.03, tb * 0.6), 0.006, n=10)
+
 
 
 def _console(b: _Builder):
@@ -1352,13 +1401,18 @@ def _console(b: _Builder):
     body = b.pick('plastic_black', 'plastic_white', 'plastic_grey')
     feet = 0.008
     _legs_box(b, 'rubber', x0 + 0.02, x1 - 0.02, y0 + 0.02, y1 - 0.02, 0.0, feet, t=0.02)
-    b.box('body', body, x0, x1 - 0.004, y0, y1, feet, H)
-    b.box('top_panel', b.pick('plastic_grey', 'plastic_black', 'plastic_black'), x0 + 0.02, x1 - 0.03,
-          y0 + 0.02, y1 - 0.1, H - 0.001, H)
+    b.box('body', body, x0, x1 - 0.004, y0, y1, feet, H - 0.002)
+    b.box('top_panel', b.pick('plastic_grey', 'plastic_black', 'plastic_black'), x0 + 0.02,
+          x1 - 0.03, y0 + 0.02, y1 - 0.1, H - 0.003, H)
     b.box('disc_slot', 'shadow', x1 - 0.004, x1, y0 + 0.04, y0 + 0.04 + W * 0.45,
           feet + (H - feet) * 0.5, feet + (H - feet) * 0.5 + 0.005)
     b.box('power_light', 'screen_on', x1 - 0.004, x1, y1 - 0.04, y1 - 0.025, feet + 0.01,
           feet + 0.016)
+    if s == 1:
+        b.box('light_bar', 'screen_on', x1 - 0.004, x1, y0 + 0.02, y1 - 0.06, H - 0.012,
+              H - 0.008)
+    elif s == 2:
+        b.box('vent', 'shadow', x0 + 0.02, x1 - 0.03, y1 - 0.08, y1 - 0.02, H - 0.003, H)
 
 
 def _washer(b: _Builder):
@@ -1367,7 +1421,7 @@ def _washer(b: _Builder):
     body = b.pick('plastic_white', 'plastic_white', 'metal')
     xf = x1 - 0.012
     _legs_box(b, 'plastic_grey', x0 + 0.03, xf - 0.05, y0 + 0.03, y1 - 0.03, 0.0, 0.02, t=0.04)
-    b.box('body', body, x0, xf, y0, y1, 0.02, H)
+    b.box('body', body, x0, xf, y0, y1, 0.02, H - (0.012 if s == 2 else 0.0))
     b.box('control_panel', 'plastic_grey' if s != 2 else 'plastic_black', xf, xf + 0.005,
           y0 + 0.01, y1 - 0.01, H - 0.12, H - 0.015)
     b.box('detergent_drawer', body, xf + 0.005, x1 - 0.003, y0 + 0.03, y0 + 0.2, H - 0.1,
@@ -1376,6 +1430,18 @@ def _washer(b: _Builder):
     b.xdisc('knob', 'chrome', xf + 0.005, x1, y1 - 0.09, H - 0.068, 0.03, n=16)
     R = min(0.2, W * 0.33)
     zc = 0.02 + (H - 0.14) / 2 + 0.01
+    if s == 1:
+        # a dark round panel behind the door and a row of buttons
+        b.xdisc('door_panel', 'plastic_grey', xf - 0.002, xf + 0.002, 0.0, zc, R * 1.12, n=28)
+        for k in range(3):
+            yc = -0.02 - 0.035 * k
+            b.box('button', 'plastic_white', xf + 0.005, xf + 0.009, yc - 0.012, yc + 0.012,
+                  H - 0.075, H - 0.06)
+    elif s == 2:
+        # washer-dryer: worktop, a second knob and a kick plate
+        b.box('worktop', 'plastic_black', x0, xf, y0, y1, H - 0.012, H)
+        b.xdisc('knob', 'chrome', xf + 0.005, x1, y0 + 0.25, H - 0.068, 0.02, n=12)
+        b.box('kick_plate', 'plastic_grey', xf, xf + 0.004, y0 + 0.02, y1 - 0.02, 0.03, 0.09)
     b.ring('door_ring', 'chrome' if s != 1 else 'plastic_grey', 0, 0, 0, 0.018, R * 0.72, R,
            n=28)
     b.transform_last(1, _rot_y(math.pi / 2), shift=(xf - 0.006, 0.0, zc))
@@ -1452,14 +1518,22 @@ def _bidet(b: _Builder):
     x0, x1, y0, y1 = b.x0, b.x1, b.y0, b.y1
     zr = H - 0.045
     deck = 0.12
-    b.box('back', 'ceramic', x0, x0 + deck, y0 + 0.02, y1 - 0.02, 0.0, zr)
     rx = (x1 - (x0 + deck - 0.05)) / 2
     bc = x1 - rx
     ey = (W / 2) / rx
-    b.lathe('pedestal', 'ceramic', [(0, 0), (rx * 0.6, 0), (rx * 0.55, 0.15), (rx * 0.8, 0.25),
-                                    (0, 0.25)], bc - 0.02, 0, ey * 0.8, n=20)
-    b.lathe('bowl', 'ceramic', [(0, 0.2), (rx * 0.75, 0.2), (rx, zr - 0.04), (rx, zr), (0, zr)],
-            bc, 0, ey, n=24)
+    if s == 1:
+        # wall-hung: a tall back block carries the bowl clear of the floor
+        b.box('back', 'ceramic', x0, x0 + deck, y0 + 0.04, y1 - 0.04, 0.0, zr)
+        b.lathe('bowl', 'ceramic', [(0, 0.12), (rx * 0.6, 0.12), (rx * 0.95, zr - 0.06), (rx, zr),
+                                    (0, zr)], bc, 0, ey, n=24)
+    else:
+        b.box('back', 'ceramic', x0, x0 + deck, y0 + 0.02, y1 - 0.02, 0.0, zr)
+        b.lathe('pedestal', 'ceramic', [(0, 0), (rx * 0.6, 0), (rx * 0.55, 0.15),
+                                        (rx * 0.8, 0.25), (0, 0.25)], bc - 0.02, 0, ey * 0.8, n=20)
+        b.lathe('bowl', 'ceramic', [(0, 0.2), (rx * 0.75, 0.2), (rx, zr - 0.04), (rx, zr),
+                                    (0, zr)], bc, 0, ey, n=24)
+    if s == 2:
+        b.ring('rim', 'ceramic', bc, 0, zr - 0.01, zr + 0.004, rx * 0.78, rx, ey=ey, n=24)
     b.cyl('basin', 'ceramic_shadow', bc + 0.01, 0, zr, zr + 0.003, rx * 0.75, rx * 0.75 * ey * 0.9,
           n=20)
     b.cyl('drain', 'chrome', bc + 0.02, 0, zr + 0.003, zr + 0.005, 0.02, n=10)
@@ -1467,7 +1541,13 @@ def _bidet(b: _Builder):
     tap = b.pick('chrome', 'chrome', 'brass')
     b.cyl('tap', tap, tx, 0, zr, H - 0.008, 0.014, n=12)
     b.seg('tap_spout', tap, (tx, 0, H - 0.02), (tx + 0.09, 0, H - 0.03), 0.009, n=8)
-    b.box('tap_lever', tap, tx - 0.04, tx + 0.005, -0.008, 0.008, H - 0.012, H)
+    if s == 2:
+        for sgn in (-1, 1):
+            b.box('tap_handle', tap, tx - 0.006, tx + 0.006, sgn * 0.05 - 0.02, sgn * 0.05 + 0.02,
+                  H - 0.008, H)
+            b.cyl('tap_valve', tap, tx, sgn * 0.05, zr, H - 0.008, 0.01, n=8)
+    else:
+        b.box('tap_lever', tap, tx - 0.04, tx + 0.005, -0.008, 0.008, H - 0.012, H)
 
 
 def _bathtub(b: _Builder):
@@ -1480,9 +1560,9 @@ def _bathtub(b: _Builder):
         rx = (D - 0.07) / 2
         cx = x1 - rx
         ey = (W / 2) / rx
-        b.lathe('tub', 'ceramic', [(0, zb), (rx * 0.8, zb), (rx * 0.97, zb + 0.2), (rx, H - 0.02),
-                                   (rx * 0.93, H - 0.02), (rx * 0.9, H - 0.2), (rx * 0.74, zb + 0.06),
-                                   (0, zb + 0.06)], cx, 0, ey, n=28)
+        b.lathe('tub', 'ceramic', [(0, zb), (rx * 0.8, zb), (rx * 0.97, zb + 0.2),
+                                   (rx, H - 0.02), (rx * 0.93, H - 0.02), (rx * 0.9, H - 0.2),
+                                   (rx * 0.74, zb + 0.06), (0, zb + 0.06)], cx, 0, ey, n=28)
         b.cyl('tub_inside', 'water', cx, 0, zb + 0.06, zb + 0.065, rx * 0.72, rx * 0.72 * ey, n=24)
         for sx in (-1, 1):
             for sy in (-1, 1):
@@ -1494,7 +1574,7 @@ def _bathtub(b: _Builder):
         return
     t = 0.08
     panel = 'ceramic' if s == 0 else 'wood'
-    b.box('apron', panel, x1 - t, x1, y0, y1, 0.0, H)
+    b.box('apron', panel, x1 - t, x1, y0, y1, 0.0, H - (0.03 if s == 1 else 0.0))
     b.box('wall', 'ceramic', x0, x0 + t, y0, y1, 0.0, H)
     b.box('wall', 'ceramic', x0 + t, x1 - t, y0, y0 + t * 1.6, 0.0, H)
     b.box('wall', 'ceramic', x0 + t, x1 - t, y1 - t * 1.6, y1, 0.0, H)
@@ -1616,12 +1696,14 @@ def _trash_can(b: _Builder):
         b.box('body', 'plastic_white', x0 + 0.006, x1 - 0.006, y0 + 0.006, y1 - 0.006, 0.0,
               H - 0.05)
         b.box('rim', 'plastic_grey', x0, x1, y0, y1, H - 0.05, H - 0.03)
-        b.box('lid', 'plastic_grey', x0 + 0.01, x1 - 0.01, y0 + 0.01, y1 - 0.01, H - 0.03, H)
-        b.box('swing_flap', 'plastic_white', x0 + 0.03, x1 - 0.03, -W * 0.3, W * 0.3, H - 0.002,
+        b.box('lid', 'plastic_grey', x0 + 0.01, x1 - 0.01, y0 + 0.01, y1 - 0.01, H - 0.03,
+              H - 0.004)
+        b.box('swing_flap', 'plastic_white', x0 + 0.03, x1 - 0.03, -W * 0.3, W * 0.3, H - 0.008,
               H)
     else:
-        b.lathe('basket', 'plastic_grey', [(0, 0), (R * 0.78, 0), (R, H - 0.02), (R * 0.95, H - 0.02),
-                                           (R * 0.74, 0.02), (0, 0.02)], 0, 0, ey, n=24)
+        b.lathe('basket', 'plastic_grey', [(0, 0), (R * 0.78, 0), (R, H - 0.02),
+                                           (R * 0.95, H - 0.02), (R * 0.74, 0.02), (0, 0.02)],
+                0, 0, ey, n=24)
         b.ring('rim', 'plastic_black', 0, 0, H - 0.02, H, R * 0.93, R, ey=ey, n=24)
         b.cyl('bag', 'shadow', 0, 0, 0.02, 0.025, R * 0.7, R * 0.7 * ey, n=16)
 
@@ -1698,7 +1780,8 @@ def _whiteboard(b: _Builder):
     if s == 2:
         # a few strokes of writing on the board
         for k in range(3):
-            b.box('writing', BOOK_COVERS[k], 0.012, 0.013, y0 + 0.2, y0 + 0.2 + (W - 0.5) * (0.7 - 0.15 * k),
+            length = (W - 0.5) * (0.7 - 0.15 * k)
+            b.box('writing', BOOK_COVERS[k], 0.012, 0.013, y0 + 0.2, y0 + 0.2 + length,
                   zb1 - 0.15 - 0.12 * k, zb1 - 0.13 - 0.12 * k)
 
 
@@ -1754,18 +1837,28 @@ def _fireplace(b: _Builder):
     b.box('lintel', surround, x0, xs, -ow / 2, ow / 2, z0 + oh, H - 0.05)
     b.box('mantel', b.pick('wood_dark', 'wood_white', 'wood_dark'), x0, xs + 0.05, y0, y1,
           H - 0.05, H)
-    b.box('firebox', 'firebox', x0, xs - 0.12, -ow / 2, ow / 2, z0, z0 + oh)
+    # the opening is a dark recess: back wall, side and top liners, sooty floor
+    lt = 0.012
+    b.box('firebox', 'firebox', x0, x0 + 0.03, -ow / 2, ow / 2, z0, z0 + oh)
+    for ya, yb in ((-ow / 2, -ow / 2 + lt), (ow / 2 - lt, ow / 2)):
+        b.box('firebox_side', 'firebox', x0 + 0.03, xs - 0.005, ya, yb, z0, z0 + oh)
+    b.box('firebox_top', 'firebox', x0 + 0.03, xs - 0.005, -ow / 2 + lt, ow / 2 - lt,
+          z0 + oh - lt, z0 + oh)
+    b.box('firebox_floor', 'firebox', x0 + 0.03, xs - 0.005, -ow / 2 + lt, ow / 2 - lt, z0,
+          z0 + 0.004)
     if s == 1:
         for yc in (-ow / 2 - 0.08, ow / 2 + 0.08):
             b.box('pilaster', 'wood_white', xs, xs + 0.025, yc - 0.06, yc + 0.06, z0, H - 0.05)
-    for k, dz in enumerate((0.0, 0.05)):
-        b.seg('log', 'bark', (xs - 0.3, -ow * 0.3, z0 + 0.04 + dz), (xs - 0.25, ow * 0.3,
-                                                                     z0 + 0.05 + dz), 0.04, n=10)
+    fx = (x0 + 0.03 + xs) / 2 - 0.01
+    fr = max(0.025, min(0.08, (xs - x0 - 0.06) / 2 - 0.015))
+    for dz in (0.0, 0.05):
+        b.seg('log', 'bark', (fx - 0.02, -ow * 0.3, z0 + 0.04 + dz),
+              (fx + 0.02, ow * 0.3, z0 + 0.05 + dz), min(0.035, fr * 0.7), n=10)
     if s != 1:
-        b.lathe('fire', 'fire', [(0, z0 + 0.08), (0.08, z0 + 0.08), (0, z0 + 0.08 + oh * 0.45)],
-                xs - 0.3, 0.0, ey=min(2.5, ow * 0.3 / 0.08), n=12)
-    b.box('grate', 'metal_dark', xs - 0.14, xs - 0.12, -ow / 2 + 0.02, ow / 2 - 0.02, z0,
-          z0 + 0.2)
+        b.lathe('fire', 'fire', [(0, z0 + 0.08), (fr, z0 + 0.08), (0, z0 + 0.08 + oh * 0.45)],
+                fx, 0.0, ey=min(2.5, ow * 0.3 / fr), n=12)
+    b.box('fender', 'metal_dark', xs - 0.025, xs - 0.012, -ow / 2 + lt, ow / 2 - lt, z0 + 0.004,
+          z0 + 0.12)
 
 
 # ---------------------------------------------------------------------------------------
@@ -1782,13 +1875,17 @@ def _plant(b: _Builder):
     b.ring('pot_rim', pot, 0, 0, ph - 0.02, ph, pr * 0.9, pr * 1.05, n=20)
     b.cyl('soil', 'soil', 0, 0, ph - 0.015, ph - 0.005, pr * 0.92, n=16)
     if s == 0:
-        blobs = [(0, 0, 0.62, 0.5), (0.45, 0.2, 0.5, 0.42), (-0.4, 0.3, 0.48, 0.4),
-                 (0.1, -0.5, 0.5, 0.42), (-0.2, -0.2, 0.85, 0.36), (0.3, 0.35, 0.8, 0.3)]
+        fh = H - ph
+        blobs = [(0.0, 0.0, 0.15, 0.62), (0.42, 0.22, 0.3, 0.5), (-0.4, 0.3, 0.35, 0.5),
+                 (0.12, -0.45, 0.3, 0.5), (-0.25, -0.2, 0.7, 0.45), (0.25, 0.2, 0.8, 0.42),
+                 (0.0, 0.0, 1.0, 0.4)]
+        rz = fh * 0.3
         for k, (bx, by, bz, br) in enumerate(blobs):
-            zc = ph + (H - ph) * bz
-            b.sphere('foliage', ('leaf', 'leaf_dark', 'leaf_light')[k % 3],
-                     (bx * R * 0.9, by * R * 0.9, zc), (br * R * 1.2, br * R * 1.2,
-                                                        min(br * R * 1.2, (H - ph) * 0.4)),
+            rh = br * R
+            zc = ph + rz * 0.6 + (fh - rz * 1.6) * bz
+            centre = (bx * R * 0.9, by * R * 0.9, zc)
+            b.seg('stem', 'leaf_dark', (0, 0, ph - 0.01), centre, 0.006, n=5)
+            b.sphere('foliage', ('leaf', 'leaf_dark', 'leaf_light')[k % 3], centre, (rh, rh, rz),
                      subdiv=1)
     elif s == 1:
         n = 9
@@ -1799,8 +1896,8 @@ def _plant(b: _Builder):
             base = np.array([pr * 0.35 * math.cos(a), pr * 0.35 * math.sin(a), ph - 0.01])
             b.obox('leaf', ('leaf', 'leaf_dark', 'leaf_light')[k % 3],
                    base + (0, 0, length / 2), (0.008, 0.035, length), _rot_z(a))
-            rot = _rot_z(a) @ _rot_x(0) @ _rot_y(lean) @ _rot_z(-a)
-            b.transform_last(1, rot @ _rot_z(0), pivot=base)
+            # lean the blade outwards, away from the pot's axis
+            b.transform_last(1, _rot_z(a) @ _rot_y(lean) @ _rot_z(-a), pivot=base)
     else:
         b.cyl('trunk', 'bark', 0, 0, ph - 0.01, ph + (H - ph) * 0.5, 0.012, n=8)
         for k, (bx, by, bz, br) in enumerate([(0, 0, 0.7, 0.75), (0.35, 0.2, 0.62, 0.5),
@@ -1850,15 +1947,16 @@ def _vase(b: _Builder):
         colours = ('red', 'yellow', 'purple', 'orange', 'paper')
         for k in range(5):
             a = 2 * math.pi * k / 5
-            tip = np.array([R * 0.8 * math.cos(a), R * 0.8 * math.sin(a), H - 0.03 - 0.03 * (k % 2)])
+            tip = np.array([R * 0.8 * math.cos(a), R * 0.8 * math.sin(a),
+                            H - 0.03 - 0.03 * (k % 2)])
             b.seg('stem', 'leaf_dark', (0, 0, vh * 0.6), tip, 0.003, n=5)
             b.sphere('flower', colours[k], tip, (0.025, 0.025, 0.02))
     elif s == 1:
         mat = 'ceramic'
-        b.frustum('body', mat, 0, 0, 0.0, H, R * 0.62, R * 0.92, n=20)
-        b.ring('lip', mat, 0, 0, H - 0.015, H, R * 0.8, R, n=20)
+        b.frustum('body', mat, 0, 0, 0.0, H - 0.02, R * 0.62, R * 0.9, n=20)
+        b.ring('lip', mat, 0, 0, H - 0.03, H, R * 0.8, R, n=20)
         b.ring('foot', 'wood_dark', 0, 0, 0.0, 0.012, R * 0.5, R * 0.66, n=20)
-        b.cyl('opening', 'shadow', 0, 0, H - 0.0, H, R * 0.78, n=16)
+        b.cyl('opening', 'shadow', 0, 0, H - 0.02, H - 0.015, R * 0.8, n=16)
     else:
         mat = 'terracotta'
         b.lathe('body', mat, [(0, 0), (R * 0.35, 0), (R * 0.6, H * 0.12), (R * 0.75, H * 0.45),
@@ -1872,7 +1970,12 @@ def _vase(b: _Builder):
 def _toy(b: _Builder):
     W, D, H, s = b.W, b.D, b.H, b.s
     x0, x1, y0, y1 = b.x0, b.x1, b.y0, b.y1
-    if s == 0:
+    kind = ('teddy', 'blocks', 'car')[s]
+    if kind == 'teddy' and H < 0.8 * max(W, D):
+        kind = 'car'
+    elif kind == 'car' and H > 1.2 * min(W, D):
+        kind = 'teddy'
+    if kind == 'teddy':
         # sitting teddy bear facing +x, in unit proportions scaled to the box at the end
         fur, light = 'fur', 'fur_light'
         b.sphere('body', fur, (0, 0, 0.32), (0.26, 0.3, 0.32), subdiv=2)
@@ -1886,18 +1989,18 @@ def _toy(b: _Builder):
         b.sphere('muzzle', light, (0.22, 0, 0.76), (0.07, 0.09, 0.07))
         b.sphere('nose', 'keys_black', (0.29, 0, 0.79), 0.025, subdiv=0)
         b.sphere('tummy', light, (0.2, 0, 0.3), (0.08, 0.18, 0.2))
-    elif s == 1:
-        # a small pyramid of wooden blocks
-        colours = ('red', 'blue', 'yellow', 'green', 'orange', 'purple')
+    elif kind == 'blocks':
+        # a small pile of toy blocks: a 2 x 2 layer, then two, then one
+        colours = ('red', 'blue', 'yellow', 'green', 'orange', 'purple', 'teal')
+        layers = int(min(3, max(1, round(H / (min(W, D) / 2.1)))))
+        spots = [[(-0.52, -0.52), (-0.52, 0.52), (0.52, -0.52), (0.52, 0.52)],
+                 [(0.0, -0.52), (0.0, 0.52)], [(0.0, 0.0)]][:layers]
         k = 0
-        rows = (3, 2, 1)
-        cube = 1.0
-        for r, count in enumerate(rows):
-            for i in range(count):
-                yc = (i - (count - 1) / 2) * cube * 1.05
-                b.box('block', colours[k % 6], -cube / 2, cube / 2, yc - cube / 2, yc + cube / 2,
-                      r * cube, (r + 1) * cube)
-                b.transform_last(1, _rot_z(0.12 * ((k * 7) % 3 - 1)), pivot=(0, yc, 0))
+        for r, layer in enumerate(spots):
+            for xc, yc in layer:
+                b.box('block', colours[k % len(colours)], xc - 0.5, xc + 0.5, yc - 0.5, yc + 0.5,
+                      r, r + 1.0)
+                b.transform_last(1, _rot_z(0.1 * ((k * 7) % 3 - 1)), pivot=(xc, yc, 0))
                 k += 1
     else:
         # toy car facing +x
@@ -1919,7 +2022,7 @@ def _fishbowl(b: _Builder):
     R = min(W, D) / 2
     ey = W / D if D < W else 1.0
     if s == 2:
-        b.box('tank', 'glass', x0, x1, y0, y1, 0.0, H)
+        b.box('tank', 'glass', x0 + 0.002, x1 - 0.002, y0 + 0.002, y1 - 0.002, 0.001, H - 0.001)
         b.box('water', 'water', x0 + 0.006, x1 - 0.006, y0 + 0.006, y1 - 0.006, 0.025, H * 0.85)
         b.box('gravel', 'gravel', x0 + 0.006, x1 - 0.006, y0 + 0.006, y1 - 0.006, 0.006, 0.025)
         for z0, z1 in ((0.0, 0.006), (H - 0.008, H)):
@@ -1963,13 +2066,14 @@ def _cup(b: _Builder):
     else:
         b.lathe('body', mat, [(0, z0), (r * 0.7, z0), (r, top), (r * 0.9, top),
                               (r * 0.62, z0 + 0.01), (0, z0 + 0.01)], 0, yc, n=20)
-    b.cyl('coffee', 'liquid_dark', 0, yc, z0 + 0.01, top - 0.015, r * (0.84 if s == 2 else 0.82),
+    b.cyl('coffee', 'liquid_dark', 0, yc, top - 0.022, top - 0.014, r * (0.86 if s == 2 else 0.8),
           n=16)
     minor = 0.006
-    ext = W / 2 - (yc + r * 0.9)
-    major = max(0.008, min(ext - minor, (top - z0) * 0.3))
-    b.torus('handle', mat, (0, yc + r * 0.9, z0 + (top - z0) * 0.5), major, minor,
-            rot=_rot_y(math.pi / 2), n=12, m=6)
+    hy = yc + r * 0.85
+    major = max(0.006, W / 2 - hy - minor)
+    zscale = max(1.0, (top - z0) * 0.3 / major)
+    b.torus('handle', mat, (0, hy, z0 + (top - z0) * 0.5), major, minor,
+            rot=_rot_y(math.pi / 2), n=12, m=6, scale=(1.0, 1.0, zscale))
 
 
 def _glass(b: _Builder):
@@ -1999,13 +2103,33 @@ def _glass(b: _Builder):
 def _bottle(b: _Builder):
     W, D, H, s = b.W, b.D, b.H, b.s
     R = min(W, D) / 2
-    glass = b.pick('bottle_green', 'water', 'bottle_brown')
-    cap = b.pick('metal', 'blue', 'metal')
-    sh = H * (0.62 if s != 1 else 0.78)
-    b.lathe('body', glass, [(0, 0), (R * 0.98, 0), (R, sh), (R * 0.38, sh + H * 0.14),
-                            (R * 0.3, H * 0.94), (0, H * 0.94)], n=20)
-    b.cyl('cap', cap, 0, 0, H * 0.93, H, R * 0.34, n=16)
-    b.cyl('label', b.pick('paper', 'blue', 'yellow'), 0, 0, H * 0.18, H * 0.45, R * 1.0, n=20)
+    if s == 0:
+        # wine bottle: high shoulders, long neck sealed with foil
+        sh = 0.6 * H
+        b.lathe('body', 'bottle_green', [(0, 0), (R * 0.97, 0), (R, sh), (R * 0.6, sh + 0.07 * H),
+                                         (R * 0.3, sh + 0.14 * H), (R * 0.28, H * 0.96),
+                                         (0, H * 0.96)], n=20)
+        b.cyl('foil', 'red', 0, 0, H * 0.84, H, R * 0.33, n=16)
+        b.cyl('label', 'paper', 0, 0, H * 0.18, H * 0.45, R * 1.012, n=20)
+    elif s == 1:
+        # plastic water bottle with moulded rings and a screw cap
+        sh = 0.78 * H
+        b.lathe('body', 'water', [(0, 0), (R * 0.95, 0), (R, 0.04 * H), (R, sh),
+                                  (R * 0.42, sh + 0.12 * H), (R * 0.35, H * 0.93), (0, H * 0.93)],
+                n=20)
+        for z in (0.3 * H, 0.55 * H):
+            b.ring('ring', 'water', 0, 0, z, z + 0.006, R * 0.9, R, n=20)
+        b.cyl('cap', 'blue', 0, 0, H * 0.92, H, R * 0.4, n=16)
+        b.cyl('label', 'blue', 0, 0, H * 0.36, H * 0.5, R * 1.012, n=20)
+    else:
+        # beer bottle: rounded shoulders, crown cap, neck label
+        sh = 0.55 * H
+        b.lathe('body', 'bottle_brown', [(0, 0), (R * 0.97, 0), (R, sh), (R * 0.8, sh + 0.06 * H),
+                                         (R * 0.38, sh + 0.17 * H), (R * 0.32, H * 0.95),
+                                         (0, H * 0.95)], n=20)
+        b.cyl('cap', 'metal', 0, 0, H * 0.94, H, R * 0.36, n=12)
+        b.cyl('label', 'yellow', 0, 0, H * 0.15, H * 0.42, R * 1.012, n=20)
+        b.cyl('neck_label', 'yellow', 0, 0, H * 0.8, H * 0.86, R * 0.36, n=16)
 
 
 def _fruit_bowl(b: _Builder):
@@ -2018,14 +2142,43 @@ def _fruit_bowl(b: _Builder):
                           (R * 0.85, bh * 0.72), (R * 0.4, bh * 0.2), (0, bh * 0.2)], 0, 0, ey,
             n=24)
     b.ring('foot', mat, 0, 0, 0.0, 0.006, R * 0.35, R * 0.45, ey=ey, n=16)
-    rf = min(R * 0.3, (H - bh * 0.2) / 2)
-    fruits = ('apple', 'citrus', 'apple', 'lemon', 'citrus')
-    for k in range(4):
-        a = 2 * math.pi * k / 4 + 0.4
-        b.sphere('fruit', fruits[k], (R * 0.42 * math.cos(a), R * 0.42 * math.sin(a) * ey,
-                                      bh * 0.2 + rf * 0.95), rf, subdiv=1)
-    b.sphere('fruit', fruits[4], (0.0, 0.0, H - rf), rf * 0.95, subdiv=1)
-    b.seg('stalk', 'bark', (0, 0, H - 0.01), (0.005, 0.0, H), 0.003, n=5)
+    z0 = bh * 0.2
+    rf = min(R * 0.3, (H - z0) / 2)
+    if s == 0:
+        fruits = ('apple', 'citrus', 'apple', 'lemon', 'citrus')
+        for k in range(4):
+            a = 2 * math.pi * k / 4 + 0.4
+            b.sphere('fruit', fruits[k], (R * 0.42 * math.cos(a), R * 0.42 * math.sin(a) * ey,
+                                          z0 + rf * 0.95), rf, subdiv=1)
+        b.sphere('fruit', fruits[4], (0.0, 0.0, H - rf), rf * 0.95, subdiv=1)
+        b.seg('stalk', 'bark', (0, 0, H - 0.01), (0.005, 0.0, H), 0.003, n=5)
+    elif s == 1:
+        # a bunch of bananas lying across two apples
+        for k, a in enumerate((0.5, 2.6)):
+            b.sphere('fruit', 'apple', (R * 0.4 * math.cos(a), R * 0.4 * math.sin(a) * ey,
+                                        z0 + rf * 0.95), rf, subdiv=1)
+        rb = min(0.018, (H - z0) / 5)
+        for k in range(3):
+            yc = (k - 1) * rb * 2.1
+            zc = H - rb - (0 if k == 1 else rb * 0.6)
+            b.seg('banana', 'lemon', (-R * 0.75, yc - 0.02, zc - rb), (0.0, yc, zc), rb, n=8)
+            b.seg('banana', 'lemon', (0.0, yc, zc), (R * 0.75, yc - 0.02, zc - rb), rb, n=8)
+        b.seg('banana_stem', 'bark', (R * 0.75, -0.02, H - 2.3 * rb), (R * 0.85, -0.02,
+                                                                         H - 1.8 * rb), rb * 0.5,
+              n=6)
+    else:
+        # a cluster of grapes and a pear-shaped lemon
+        rg = min(0.012, (H - z0) / 6)
+        k = 0
+        for layer, (n, rad) in enumerate(((7, R * 0.5), (5, R * 0.32), (1, 0.0))):
+            zc = z0 + rg + layer * rg * 1.6
+            for i in range(n):
+                a = 2 * math.pi * i / n + 0.3 * layer
+                b.sphere('grape', 'grape', (rad * math.cos(a) - R * 0.15, rad * math.sin(a) * ey,
+                                            zc), rg, subdiv=0)
+                k += 1
+        b.sphere('fruit', 'lemon', (R * 0.45, -R * 0.2 * ey, H - rf), (rf * 1.1, rf * 0.9, rf),
+                 subdiv=1)
 
 
 # ---------------------------------------------------------------------------------------
@@ -2254,60 +2407,128 @@ def scene_mesh(scene) -> trimesh.Scene:
 
 # ---------------------------------------------------------------------------------------
 # previews
+#
+# matplotlib's 3D axes sort whole polygons back to front, which goes wrong for layered
+# furniture (a door 2 cm in front of a carcass). The preview therefore rasterises the mesh
+# itself with a small z-buffer (orthographic, flat shading, part outlines, alpha-blended glass)
+# and shows the image with matplotlib.
 
 
-def _draw(ax, variant: ModelVariant, elev: float = 22.0, azim: float = -38.0) -> None:
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+def _view_basis(elev: float, azim: float):
+    e, a = math.radians(elev), math.radians(azim)
+    eye = np.array([math.cos(e) * math.cos(a), math.cos(e) * math.sin(a), math.sin(e)])
+    right = np.cross([0.0, 0.0, 1.0], eye)
+    right /= np.linalg.norm(right)
+    up = np.cross(eye, right)
+    return eye, right, up
 
-    polys, colours = [], []
-    light = np.array([0.45, -0.55, 0.7])
+
+def render_image(variant: ModelVariant, px: int = 320, elev: float = 22.0,
+                 azim: float = 32.0) -> np.ndarray:
+    """An RGB float image (px x px, row 0 at the top) of ``variant`` seen from the front
+    three-quarter direction (camera on the +x, +y side, ``elev`` degrees up)."""
+    eye, right, up = _view_basis(elev, azim)
+    light = eye + np.array([0.3, -0.2, 0.8])
     light /= np.linalg.norm(light)
-    for p in build_parts(variant):
+    parts = build_parts(variant)
+    allv = np.vstack([p.vertices for p in parts])
+    uv_all = np.column_stack((allv @ right, allv @ up))
+    lo, hi = uv_all.min(axis=0), uv_all.max(axis=0)
+    scale = 0.9 * px / max(hi[0] - lo[0], hi[1] - lo[1])
+    offset = px / 2.0 - scale * (lo + hi) / 2.0
+    img = np.ones((px, px, 3))
+    zbuf = np.full((px, px), -np.inf)
+    ids = np.full((px, px), -1)
+    glass = []
+
+    def raster(tri_uv, z, on_pixels):
+        (x0, y0), (x1, y1), (x2, y2) = tri_uv
+        area = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
+        if abs(area) < 1e-9:
+            return
+        cmin = max(int(math.floor(min(x0, x1, x2))), 0)
+        cmax = min(int(math.ceil(max(x0, x1, x2))), px - 1)
+        rmin = max(int(math.floor(min(y0, y1, y2))), 0)
+        rmax = min(int(math.ceil(max(y0, y1, y2))), px - 1)
+        if cmin > cmax or rmin > rmax:
+            return
+        xs = np.arange(cmin, cmax + 1) + 0.5
+        ys = np.arange(rmin, rmax + 1) + 0.5
+        gx, gy = np.meshgrid(xs, ys)
+        w0 = ((x1 - gx) * (y2 - gy) - (x2 - gx) * (y1 - gy)) / area
+        w1 = ((x2 - gx) * (y0 - gy) - (x0 - gx) * (y2 - gy)) / area
+        w2 = 1.0 - w0 - w1
+        inside = (w0 >= -1e-6) & (w1 >= -1e-6) & (w2 >= -1e-6)
+        if not inside.any():
+            return
+        depth = w0 * z[0] + w1 * z[1] + w2 * z[2]
+        on_pixels(slice(rmin, rmax + 1), slice(cmin, cmax + 1), inside, depth)
+
+    for pid, p in enumerate(parts):
+        mat = MATERIALS[p.material]
+        rgba = np.array(mat.rgba, float) / 255.0
         tri = p.vertices[p.faces]
         n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-        norm = np.linalg.norm(n, axis=1)
-        keep = norm > 1e-12
-        n = n[keep] / norm[keep, None]
-        shade = 0.45 + 0.55 * np.clip(n @ light, 0.0, 1.0)
-        rgba = np.array(MATERIALS[p.material].rgba, float) / 255.0
-        col = np.tile(rgba, (int(keep.sum()), 1))
-        col[:, :3] *= shade[:, None]
-        if rgba[3] < 1.0:
-            col[:, 3] = max(0.25, rgba[3] * 0.7)
-        polys.append(tri[keep])
-        colours.append(col)
-    coll = Poly3DCollection(np.concatenate(polys), facecolors=np.concatenate(colours),
-                            edgecolors='none', linewidths=0.0)
-    ax.add_collection3d(coll)
-    d, w, h = variant.depth, variant.width, variant.height
-    ax.set_xlim(-d / 2, d / 2)
-    ax.set_ylim(-w / 2, w / 2)
-    ax.set_zlim(0, h)
-    ax.set_box_aspect((d, w, h))
-    ax.view_init(elev=elev, azim=azim)
-    ax.set_axis_off()
+        n /= np.maximum(np.linalg.norm(n, axis=1), 1e-12)[:, None]
+        shade = 0.42 + 0.58 * np.clip(n @ light, 0.0, 1.0)
+        uv = np.stack((tri @ right, tri @ up), axis=-1) * scale + offset
+        z = tri @ eye
+        for k in range(len(tri)):
+            if mat.transparent:
+                glass.append((float(z[k].mean()), uv[k], z[k], rgba, shade[k]))
+                continue
+            if n[k] @ eye <= 0.0:
+                continue
+            colour = rgba[:3] * shade[k]
+
+            def write(rs, cs, inside, depth, colour=colour, pid=pid):
+                closer = inside & (depth > zbuf[rs, cs])
+                zbuf[rs, cs][closer] = depth[closer]
+                img[rs, cs][closer] = colour
+                ids[rs, cs][closer] = pid
+            raster(uv[k], z[k], write)
+    # outlines where the visible part changes or the depth jumps
+    edge = np.zeros((px, px), bool)
+    size = max(variant.size)
+    zfin = np.where(np.isfinite(zbuf), zbuf, -1e3 * size)
+    for axis in (0, 1):
+        dz = np.abs(zfin - np.roll(zfin, 1, axis=axis))
+        other = ids != np.roll(ids, 1, axis=axis)
+        edge |= (other & (dz > 2e-3 * size)) | (dz > 0.03 * size)
+    edge &= (ids >= 0) | np.roll(ids >= 0, 1, 0) | np.roll(ids >= 0, 1, 1)
+    img[edge] *= 0.55
+    for _, tri_uv, z, rgba, sh in sorted(glass, key=lambda g: g[0]):
+        colour = rgba[:3] * (0.75 + 0.25 * sh)
+        alpha = max(0.25, rgba[3] * 0.7)
+
+        def blend(rs, cs, inside, depth, colour=colour, alpha=alpha):
+            front = inside & (depth > zbuf[rs, cs])
+            img[rs, cs][front] = img[rs, cs][front] * (1 - alpha) + colour * alpha
+        raster(tri_uv, z, blend)
+    return np.clip(img[::-1], 0.0, 1.0)
 
 
 def render_preview(variant: ModelVariant, path: str | Path, size_px: int = 400) -> Path:
-    """Draw ``variant`` from a front three-quarter view (front = +x, towards the viewer's
-    left) into a PNG with matplotlib."""
+    """Draw ``variant`` from a front three-quarter view (camera on the +x, +y side, a
+    little above) into a labelled PNG, using matplotlib's Agg backend."""
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
 
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig = plt.figure(figsize=(size_px / 100, size_px / 100), dpi=100)
-    ax = fig.add_subplot(projection='3d')
-    _draw(ax, variant)
-    ax.set_title(f'{variant.category} ({variant.model_id})', fontsize=9)
+    fig = plt.figure(figsize=(size_px / 100, size_px / 100 + 0.3), dpi=100)
+    ax = fig.add_axes((0.0, 0.0, 1.0, size_px / (size_px + 30.0)))
+    ax.imshow(render_image(variant, px=size_px * 2), interpolation='antialiased')
+    ax.set_axis_off()
+    fig.suptitle(f'{variant.category} ({variant.model_id})', fontsize=9, y=0.99)
     fig.savefig(path)
     plt.close(fig)
     return path
 
 
 def save_contact_sheet(path: str | Path, variants: Sequence[ModelVariant] | None = None,
-                       columns: int = 8) -> Path:
+                       columns: int = 8, panel_px: int = 200) -> Path:
     """A labelled grid of previews, by default one variant per category (styles mixed)."""
     import matplotlib
     matplotlib.use('Agg')
@@ -2318,12 +2539,14 @@ def save_contact_sheet(path: str | Path, variants: Sequence[ModelVariant] | None
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     rows = math.ceil(len(variants) / columns)
-    fig = plt.figure(figsize=(columns * 2.1, rows * 2.2), dpi=90)
+    dpi = 100
+    fig = plt.figure(figsize=(columns * panel_px / dpi, rows * (panel_px + 26) / dpi), dpi=dpi)
     for i, v in enumerate(variants):
-        ax = fig.add_subplot(rows, columns, i + 1, projection='3d')
-        _draw(ax, v)
-        ax.set_title(f'{v.category}\n{v.model_id}', fontsize=8, pad=-4)
-    fig.subplots_adjust(left=0.0, right=1.0, bottom=0.0, top=0.97, wspace=0.0, hspace=0.12)
+        ax = fig.add_subplot(rows, columns, i + 1)
+        ax.imshow(render_image(v, px=panel_px * 2), interpolation='antialiased')
+        ax.set_axis_off()
+        ax.set_title(f'{v.category}\n{v.model_id}', fontsize=7, pad=1)
+    fig.subplots_adjust(left=0.0, right=1.0, bottom=0.0, top=0.97, wspace=0.02, hspace=0.18)
     fig.savefig(path)
     plt.close(fig)
     return path
