@@ -115,7 +115,7 @@ def doors_connected(scene: Scene, robot_width: float = ROBOT_WIDTH) -> bool:
     owners = set()
     for door in doors:
         p = door_entry_point(scene.room, door, robot_width)
-        hit = [i for i, part in enumerate(parts) if part.buffer(1e-6).covers(p)]
+        hit = [i for i, part in enumerate(parts) if part.distance(p) < 1e-6]
         if not hit:
             return False
         owners.add(hit[0])

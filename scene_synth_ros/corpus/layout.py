@@ -10,8 +10,8 @@ from shapely.geometry import LineString, Polygon
 from shapely.prepared import prep
 
 from ..catalog import ModelVariant
-from ..geometry import (MIN_SUPPORT, door_entry_point, door_zone, free_space,
-                        shrunk_footprint, support_fraction)
+from ..geometry import (MIN_SUPPORT, door_zone, doors_connected, shrunk_footprint,
+                        support_fraction)
 from ..scene import PlacedObject, Room, Scene, Wall
 
 TOUCH = 0.002           # footprints may touch: 2 mm of numerical slack
@@ -35,7 +35,6 @@ class Layout:
         self.scene = Scene(room, [], dict(meta or {}))
         self._floor = prep(room.polygon.buffer(TOUCH, join_style='mitre'))
         self._door_zones = [door_zone(room, d) for d in room.doors]
-        self._entries = [door_entry_point(room, d) for d in room.doors]
         self._windows = []
         for w in room.windows:
             wall = room.wall_of(w)
@@ -65,17 +64,7 @@ class Layout:
 
     def keeps_path(self) -> bool:
         """Every door can still be reached from every other for the reference robot."""
-        if not self._entries:
-            return True
-        free = free_space(self.scene)
-        parts = list(getattr(free, 'geoms', [free]))
-        owners = set()
-        for p in self._entries:
-            hit = [i for i, part in enumerate(parts) if part.distance(p) < 1e-6]
-            if not hit:
-                return False
-            owners.add(hit[0])
-        return len(owners) == 1
+        return doors_connected(self.scene)
 
     def add(self, obj: PlacedObject, check_path: bool = True) -> bool:
         """Add a first-tier object that ``fits``; undone if it cuts the path between doors."""
