@@ -119,15 +119,20 @@ def cmd_render(args) -> int:
     return 0
 
 
-def cmd_gallery(args) -> int:
+def _corpus_rooms(seed: int, per_type: int):
+    """(name, scene) for the first ``per_type`` corpus rooms of every room type."""
     from .corpus.generate import generate_room
+    for rt in ROOM_TYPES:
+        for i in range(per_type):
+            yield f'{rt}_{i}', generate_room(rt, seed, i)
+
+
+def cmd_gallery(args) -> int:
     from .plot import save_grid
     scenes, titles = [], []
-    for rt in ROOM_TYPES:
-        for i in range(args.per_type):
-            s = generate_room(rt, args.seed, i)
-            scenes.append(s)
-            titles.append(f'{rt} #{i} (seed {args.seed})')
+    for name, s in _corpus_rooms(args.seed, args.per_type):
+        scenes.append(s)
+        titles.append(f'{name.replace("_", " #")} (seed {args.seed})')
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     save_grid(scenes, out, ncols=args.per_type, titles=titles)
@@ -138,7 +143,6 @@ def cmd_gallery(args) -> int:
 def cmd_demo(args) -> int:
     """The main job at this stage: furnish a few procedural rooms of each type and show
     them (JSON, one picture each, a contact sheet, a table in the terminal)."""
-    from .corpus.generate import generate_room
     from .geometry import check_scene
     from .plot import save_grid, save_png
     from .schema import save_scene
@@ -147,19 +151,15 @@ def cmd_demo(args) -> int:
     scenes, titles = [], []
     print(f'{"room":16s} {"floor":>10s} {"doors":>5s} {"windows":>7s} {"objects":>7s} '
           f'{"valid":>5s}  categories')
-    for rt in ROOM_TYPES:
-        for i in range(args.per_type):
-            s = generate_room(rt, args.seed, i)
-            name = f'{rt}_{i}'
-            save_scene(s, out / f'{name}.json')
-            save_png(s, out / f'{name}.png', title=name)
-            scenes.append(s)
-            titles.append(name)
-            cats = ', '.join(f'{n}x {c}' if n > 1 else c
-                             for c, n in s.category_counts().items())
-            print(f'{name:16s} {s.room.area:8.1f}m2 {len(s.room.doors):5d} '
-                  f'{len(s.room.windows):7d} {len(s):7d} '
-                  f'{"yes" if check_scene(s).ok else "NO":>5s}  {cats}')
+    for name, s in _corpus_rooms(args.seed, args.per_type):
+        save_scene(s, out / f'{name}.json')
+        save_png(s, out / f'{name}.png', title=name)
+        scenes.append(s)
+        titles.append(name)
+        cats = ', '.join(f'{n}x {c}' if n > 1 else c for c, n in s.category_counts().items())
+        print(f'{name:16s} {s.room.area:8.1f}m2 {len(s.room.doors):5d} '
+              f'{len(s.room.windows):7d} {len(s):7d} '
+              f'{"yes" if check_scene(s).ok else "NO":>5s}  {cats}')
     save_grid(scenes, out / 'gallery.png', ncols=args.per_type, titles=titles)
     print(f'\nwrote {len(scenes)} scenes (JSON + PNG) and {out / "gallery.png"}')
     return 0

@@ -396,10 +396,10 @@ def _door(b: _Builder, mat, hmat, y0, y1, z0, z1, xf, handle_side=+1, handle_z=N
           handle_z + hl / 2)
 
 
-def _legs_box(b: _Builder, mat, x0, x1, y0, y1, z0, z1, t=0.045, inset=0.0):
+def _legs_box(b: _Builder, mat, x0, x1, y0, y1, z0, z1, t=0.045, inset=0.0, name='leg'):
     for xa in (x0 + inset, x1 - inset - t):
         for ya in (y0 + inset, y1 - inset - t):
-            b.box('leg', mat, xa, xa + t, ya, ya + t, z0, z1)
+            b.box(name, mat, xa, xa + t, ya, ya + t, z0, z1)
 
 
 def _legs_round(b: _Builder, mat, x0, x1, y0, y1, z0, z1, r=0.02, inset=0.0, taper=1.0, n=10):
@@ -464,9 +464,7 @@ def _bunker_bed(b: _Builder):
     x0, x1, y0, y1 = b.x0, b.x1, b.y0, b.y1
     mat = b.pick('wood', 'wood_white', 'metal_dark')
     p = 0.07
-    for xa in (x0, x1 - p):
-        for ya in (y0, y1 - p):
-            b.box('post', mat, xa, xa + p, ya, ya + p, 0.0, H)
+    _legs_box(b, mat, x0, x1, y0, y1, 0.0, H, t=p, name='post')
     up = H - 0.62
     for z0, z1 in ((0.15, 0.3), (up, up + 0.14)):
         b.box('deck', mat, x0 + 0.01, x1 - 0.01, y0 + 0.01, y1 - 0.01, z0, z1)
@@ -506,9 +504,7 @@ def _baby_bed(b: _Builder):
     x0, x1, y0, y1 = b.x0, b.x1, b.y0, b.y1
     mat = b.pick('wood_white', 'wood_light', 'wood')
     p = 0.045
-    for xa in (x0, x1 - p):
-        for ya in (y0, y1 - p):
-            b.box('post', mat, xa, xa + p, ya, ya + p, 0.0, H)
+    _legs_box(b, mat, x0, x1, y0, y1, 0.0, H, t=p, name='post')
     zb = 0.32
     b.box('base', mat, x0 + p, x1 - p, y0 + p, y1 - p, zb - 0.04, zb)
     b.box('mattress', b.pick('blanket_blue', 'mattress', 'blanket_rose'), x0 + p, x1 - p,

@@ -197,7 +197,10 @@ def world_to_pixel(frame: Frame, xy, continuous: bool = False) -> np.ndarray:
 # --------------------------------------------------------------------------------------------
 
 def _to_px(frame: Frame, x: float, y: float) -> tuple[float, float]:
-    """World point to pixel-centre coordinates (col, row) as floats."""
+    """World point to pixel-centre coordinates (col, row) as floats.
+
+    The scalar twin of ``world_to_pixel(..., continuous=True)``: the per-object loop of
+    ``render`` calls it for every object, where numpy's per-call overhead would dominate."""
     c, s = math.cos(frame.yaw), math.sin(frame.yaw)
     dx, dy = x - frame.centre[0], y - frame.centre[1]
     m, half = frame.metres_per_pixel, frame.resolution / 2.0 - 0.5
