@@ -251,10 +251,60 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument('--categories', help='comma-separated categories (default: all)')
     c.set_defaults(func=cmd_catalog)
 
+    c = sub.add_parser('train', help='train the four networks of a room type (resumable)')
+    c.add_argument('--room-type', default='all', help='bedroom, living, office, bathroom or all')
+    c.add_argument('--config', help='model and training configuration (YAML; default: '
+                   'config/compact.yaml)')
+    c.add_argument('--device', choices=('cpu', 'cuda', 'auto'), help='overrides the config')
+    c.add_argument('--threads', type=int, help='torch threads (default: the config; 0 = all)')
+    c.add_argument('--run-dir', help='checkpoints and logs (default: runs/<config name>); '
+                   'an interrupted run started again with the same directory resumes')
+    c.add_argument('--weights-dir', help='where the trained bundles go (default: the '
+                   "package's weights/)")
+    c.add_argument('--quiet', action='store_true', help='no progress bars')
+    c.set_defaults(func=cmd_train)
+
     c = sub.add_parser('validate', help='check scene JSON files: schema and physics')
     c.add_argument('files', nargs='+')
     c.set_defaults(func=cmd_validate)
     return p
+
+
+# ---- training ----------------------------------------------------------------------------
+def _pipeline_config(path: str | None, device: str | None = None):
+    from .models.config import PipelineConfig
+    from .paths import default_config_path
+    path = path or str(default_config_path())
+    try:
+        cfg = PipelineConfig.from_yaml(path)
+    except FileNotFoundError:
+        raise UserError(f'{path}: no such configuration file') from None
+    except (ValueError, TypeError) as e:
+        raise UserError(f'{path}: {e}') from None
+    except Exception as e:  # a YAML syntax error names its own line
+        raise UserError(f'{path}: not valid YAML ({str(e).splitlines()[0]})') from None
+    if device:
+        cfg.device = device
+    return cfg
+
+
+def cmd_train(args) -> int:
+    from .models.config import resolve_device
+    from .models.train import train
+    from .paths import weights_dir
+    cfg = _pipeline_config(args.config, args.device)
+    if args.threads is not None:
+        cfg.train.threads = args.threads
+    try:
+        resolve_device(cfg.device)
+    except ValueError as e:
+        raise UserError(str(e)) from None
+    run_root = Path(args.run_dir or f'runs/{cfg.name}')
+    out = Path(args.weights_dir) if args.weights_dir else weights_dir()
+    print(f'training {", ".join(_room_types(args.room_type))} with the {cfg.name} '
+          f'configuration; checkpoints and logs in {run_root}, weights to {out}')
+    train(_room_types(args.room_type), cfg, run_root, out, progress=not args.quiet)
+    return 0
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -37,3 +37,16 @@ def schema_dir() -> Path:
 
 def examples_dir() -> Path:
     return share_dir() / 'examples'
+
+
+def config_dir() -> Path:
+    return share_dir() / 'config'
+
+
+def default_config_path() -> Path:
+    return config_dir() / 'compact.yaml'
+
+
+def weights_dir() -> Path:
+    """The shipped weights, inside the Python package (found wherever it is installed)."""
+    return Path(__file__).resolve().parent / 'weights'

@@ -1,0 +1,111 @@
+"""ResNet building blocks, written here (no torchvision): the encoders of all four modules."""
+from __future__ import annotations
+
+import torch
+from torch import nn
+
+from .config import EncoderConfig
+
+
+class BasicBlock(nn.Module):
+    """Two 3x3 convolutions with batch norm and an identity (or 1x1 projection) shortcut."""
+
+    def __init__(self, cin: int, cout: int, stride: int = 1):
+        super().__init__()
+        self.conv1 = nn.Conv2d(cin, cout, 3, stride, 1, bias=False)
+        self.bn1 = nn.BatchNorm2d(cout)
+        self.conv2 = nn.Conv2d(cout, cout, 3, 1, 1, bias=False)
+        self.bn2 = nn.BatchNorm2d(cout)
+        self.shortcut = nn.Identity()
+        if stride != 1 or cin != cout:
+            self.shortcut = nn.Sequential(nn.Conv2d(cin, cout, 1, stride, bias=False),
+                                          nn.BatchNorm2d(cout))
+
+    def forward(self, x):
+        y = torch.relu(self.bn1(self.conv1(x)))
+        y = self.bn2(self.conv2(y))
+        return torch.relu(y + self.shortcut(x))
+
+
+class ResNetEncoder(nn.Module):
+    """Stem, then one stage per entry of ``cfg.blocks`` (each stage after the first halves
+    the resolution). ``forward`` returns the last feature map; ``out_channels`` its depth and
+    ``downsampling`` the total reduction of the image side."""
+
+    def __init__(self, in_channels: int, cfg: EncoderConfig):
+        super().__init__()
+        w0 = cfg.widths[0]
+        stem = [nn.Conv2d(in_channels, w0, 3, cfg.stem_stride, 1, bias=False),
+                nn.BatchNorm2d(w0), nn.ReLU(inplace=True)]
+        self.downsampling = cfg.stem_stride
+        if cfg.stem_pool:
+            stem.append(nn.MaxPool2d(3, 2, 1))
+            self.downsampling *= 2
+        self.stem = nn.Sequential(*stem)
+        stages, cin = [], w0
+        for k, (n, w) in enumerate(zip(cfg.blocks, cfg.widths)):
+            stride = 1 if k == 0 else 2
+            if k:
+                self.downsampling *= 2
+            blocks = [BasicBlock(cin, w, stride)] + [BasicBlock(w, w) for _ in range(n - 1)]
+            stages.append(nn.Sequential(*blocks))
+            cin = w
+        self.stages = nn.Sequential(*stages)
+        self.out_channels = cin
+
+    def forward(self, x):
+        return self.stages(self.stem(x))
+
+
+class PooledEncoder(nn.Module):
+    """A ``ResNetEncoder`` followed by global average pooling: image -> feature vector."""
+
+    def __init__(self, in_channels: int, cfg: EncoderConfig):
+        super().__init__()
+        self.body = ResNetEncoder(in_channels, cfg)
+        self.out_features = self.body.out_channels
+
+    def forward(self, x):
+        return self.body(x).mean(dim=(2, 3))
+
+
+class UpBlock(nn.Module):
+    """Nearest-neighbour 2x upsampling and a 3x3 convolution (the paper's up-convolution,
+    which avoids the checkerboard artefacts of transposed convolutions)."""
+
+    def __init__(self, cin: int, cout: int):
+        super().__init__()
+        self.conv = nn.Conv2d(cin, cout, 3, 1, 1, bias=False)
+        self.bn = nn.BatchNorm2d(cout)
+
+    def forward(self, x):
+        x = nn.functional.interpolate(x, scale_factor=2, mode='nearest')
+        return torch.relu(self.bn(self.conv(x)))
+
+
+def mlp(sizes: list[int], dropout: float = 0.0) -> nn.Sequential:
+    """Linear layers with ReLU between them (none after the last)."""
+    layers: list[nn.Module] = []
+    for k, (a, b) in enumerate(zip(sizes, sizes[1:])):
+        layers.append(nn.Linear(a, b))
+        if k < len(sizes) - 2:
+            layers.append(nn.ReLU(inplace=True))
+            if dropout:
+                layers.append(nn.Dropout(dropout))
+    return nn.Sequential(*layers)
+
+
+class PerCategoryLinear(nn.Module):
+    """A separate linear output layer for every category, applied to each example with the
+    weights of its own category: the per-category heads of the orientation, snap and
+    dimension modules share a trunk but never each other's outputs."""
+
+    def __init__(self, num_categories: int, cin: int, cout: int):
+        super().__init__()
+        self.weight = nn.Parameter(torch.empty(num_categories, cin, cout))
+        self.bias = nn.Parameter(torch.zeros(num_categories, cout))
+        bound = cin ** -0.5          # nn.Linear's default initialisation, per category
+        nn.init.uniform_(self.weight, -bound, bound)
+
+    def forward(self, x, category):
+        return torch.bmm(x.unsqueeze(1), self.weight[category]).squeeze(1) + self.bias[category]

@@ -1,0 +1,147 @@
+"""Configuration of the four networks and of their training, read from YAML.
+
+Two shipped configurations live in ``config/``: ``compact.yaml`` (the default: 64 px images,
+quarter-width ResNets, sized so that all four room types train on a 2-core CPU within four
+hours) and ``paper.yaml`` (the paper's 256 px input and full ResNet-18/34 widths).
+"""
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field, fields, is_dataclass, replace
+import json
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+
+@dataclass
+class EncoderConfig:
+    """A ResNet-style encoder: ``blocks`` basic blocks per stage, ``widths`` channels."""
+
+    blocks: tuple[int, ...] = (2, 2, 2, 2)
+    widths: tuple[int, ...] = (16, 32, 64, 128)
+    stem_stride: int = 2       # the stem convolution's stride
+    stem_pool: bool = True     # a 2x max-pool after the stem, as in ResNet
+
+
+@dataclass
+class ModelConfig:
+    """Sizes of the networks. ``resolution`` is the input image side; the location module
+    always answers on a ``location_resolution`` grid (64 in the paper)."""
+
+    resolution: int = 64
+    location_resolution: int = 64
+    category_encoder: EncoderConfig = field(default_factory=EncoderConfig)
+    location_encoder: EncoderConfig = field(
+        default_factory=lambda: EncoderConfig(blocks=(3, 4, 6, 3)))
+    location_decoder_widths: tuple[int, ...] = (64, 32, 32, 16, 16)
+    location_dropout: float = 0.1
+    local_encoder: EncoderConfig = field(
+        default_factory=lambda: EncoderConfig(blocks=(1, 1, 1, 1)))
+    count_features: int = 64       # width of the bag-of-categories MLP
+    hidden: int = 128              # width of the MLP heads
+    latent: int = 8                # CVAE latent dimension (orientation and dimensions)
+    discriminator_widths: tuple[int, ...] = (16, 32, 64, 64)
+
+
+@dataclass
+class ModuleSchedule:
+    steps: int
+    batch_size: int = 64
+    lr: float = 1e-3
+    weight_decay: float = 1e-5
+
+
+@dataclass
+class TrainConfig:
+    """How the networks are trained. Steps are per module and per room type."""
+
+    seed: int = 0
+    corpus_seed: int = 0
+    train_rooms: int = 3000
+    val_rooms: int = 200
+    val_examples: int = 512
+    val_every: int = 250
+    checkpoint_every: int = 250
+    threads: int = 0                       # torch threads; 0 = all cores
+    category: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1500))
+    location: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1500))
+    orientation: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1000))
+    snap: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(500))
+    dimensions: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1000))
+    empty_weight: float = 0.1              # location: weight of empty pixels vs centroids
+    kl_weight: float = 1.0                 # CVAE: weight of the KL term
+    adversarial_weight: float = 0.05       # dimensions: weight of the discriminator's loss
+
+
+@dataclass
+class PipelineConfig:
+    """Everything a training run or a synthesizer needs to know about the networks."""
+
+    name: str = 'compact'
+    device: str = 'auto'                    # cpu | cuda | auto
+    model: ModelConfig = field(default_factory=ModelConfig)
+    train: TrainConfig = field(default_factory=TrainConfig)
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict(), sort_keys=True)
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> 'PipelineConfig':
+        return _build(cls, d, 'config')
+
+    @classmethod
+    def from_yaml(cls, path: str | Path) -> 'PipelineConfig':
+        with open(path, encoding='utf-8') as f:
+            data = yaml.safe_load(f)
+        if not isinstance(data, dict):
+            raise ValueError(f'{path}: a configuration must be a YAML mapping')
+        return cls.from_dict(data)
+
+
+def _build(cls, data: Any, where: str, base=None):
+    """A dataclass from a nested mapping over the defaults in ``base``, refusing unknown
+    keys so that a typo in a YAML file is an error instead of a silently ignored setting."""
+    if not isinstance(data, dict):
+        raise ValueError(f'{where}: expected a mapping, got {type(data).__name__}')
+    known = {f.name: f for f in fields(cls)}
+    unknown = sorted(set(data) - set(known))
+    if unknown:
+        raise ValueError(f'{where}: unknown setting {unknown[0]!r}; expected one of '
+                         f'{", ".join(known)}')
+    kwargs = {}
+    defaults = base if base is not None else cls()
+    for name, value in data.items():
+        current = getattr(defaults, name)
+        if is_dataclass(current):
+            kwargs[name] = _build(type(current), value, f'{where}.{name}', current)
+        elif isinstance(current, tuple):
+            if not isinstance(value, (list, tuple)):
+                raise ValueError(f'{where}.{name}: expected a list')
+            kwargs[name] = tuple(value)
+        elif isinstance(current, bool):
+            if not isinstance(value, bool):
+                raise ValueError(f'{where}.{name}: expected true or false')
+            kwargs[name] = value
+        elif isinstance(current, (int, float)):
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise ValueError(f'{where}.{name}: expected a number')
+            kwargs[name] = type(current)(value)
+        else:
+            kwargs[name] = value
+    return replace(defaults, **kwargs)
+
+
+def resolve_device(name: str):
+    """A torch device for ``cpu | cuda | auto`` (auto: cuda when available)."""
+    import torch
+    if name == 'auto':
+        return torch.device('cuda' if torch.cuda.is_available() else 'cpu')
+    if name == 'cuda' and not torch.cuda.is_available():
+        raise ValueError('device cuda was asked for, but torch sees no CUDA device')
+    if name not in ('cpu', 'cuda'):
+        raise ValueError(f'unknown device {name!r}; expected cpu, cuda or auto')
+    return torch.device(name)

@@ -1,0 +1,230 @@
+"""Training examples made from furnished rooms by removing objects (paper, section 4).
+
+Ordering rules: every first-tier object comes before every second-tier one (so supporting
+parents come before what they support); within a tier, the category module sees objects in
+decreasing importance of their category and the other modules in random order. A partial
+scene is a prefix of that order. The location target marks the centroid of every removed
+object whose supporting parent is present. Every example may be turned by a multiple of 90
+degrees about the room's centre (the paper's augmentation).
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+import math
+
+import numpy as np
+import torch
+
+from ..categories import ROOM_SIZE_CAP, resolve_room_type, room_spec
+from ..render import Frame, TopDownRenderer
+from ..scene import Opening, PlacedObject, Room, Scene
+from .orientation import is_snapped
+
+MODULES = ('category', 'location', 'orientation', 'snap', 'dimensions')
+
+
+# ---- frames -------------------------------------------------------------------------------
+def room_axis_yaw(room: Room) -> float:
+    """Direction of the room's longest wall, reduced to [-45, 45) degrees: the axes the
+    networks see the room in (0 for the axis-aligned rooms of the corpus)."""
+    wall = max(room.walls, key=lambda w: w.length)
+    d = wall.direction
+    a = math.atan2(d[1], d[0])
+    q = math.pi / 2
+    return (a + q / 2) % q - q / 2
+
+
+def room_frame(room: Room, resolution: int) -> Frame:
+    """The global view of a room: centred on its bounding box in its own axes, rotated by
+    ``room_axis_yaw``, side = the room type's size cap. For an axis-aligned room this is
+    ``Frame.for_room``."""
+    yaw = room_axis_yaw(room)
+    c, s = math.cos(yaw), math.sin(yaw)
+    pts = np.asarray(room.floor)
+    u = pts[:, 0] * c + pts[:, 1] * s
+    v = -pts[:, 0] * s + pts[:, 1] * c
+    cu, cv = (u.min() + u.max()) / 2, (v.min() + v.max()) / 2
+    rt = resolve_room_type(room.room_type)
+    cap = ROOM_SIZE_CAP[rt]
+    if max(u.max() - u.min(), v.max() - v.min()) > cap + 1e-6:
+        raise ValueError(f'the {rt} spans {u.max() - u.min():.2f} x {v.max() - v.min():.2f} m, '
+                         f'more than the {cap:g} m a {rt} image covers')
+    return Frame((cu * c - cv * s, cu * s + cv * c), yaw, cap, resolution)
+
+
+def local_frame(room: Room, point, yaw: float, resolution: int) -> Frame:
+    return Frame.local(room.room_type, point, yaw, resolution)
+
+
+# ---- augmentation -------------------------------------------------------------------------
+def _turn(xy, centre, k: int):
+    x, y = xy[0] - centre[0], xy[1] - centre[1]
+    for _ in range(k % 4):
+        x, y = -y, x
+    return (x + centre[0], y + centre[1])
+
+
+def rotate_scene(scene: Scene, k: int) -> Scene:
+    """The scene turned by ``k`` x 90 degrees counter-clockwise about its bounding-box
+    centre (exact: coordinates are only swapped and negated)."""
+    k %= 4
+    if k == 0:
+        return scene
+    xs = [p[0] for p in scene.room.floor]
+    ys = [p[1] for p in scene.room.floor]
+    centre = ((min(xs) + max(xs)) / 2, (min(ys) + max(ys)) / 2)
+    room = scene.room
+
+    def turn_opening(o: Opening) -> Opening:
+        return replace(o, position=_turn(o.position, centre, k))
+
+    room = Room(room.room_type, [_turn(p, centre, k) for p in room.floor], room.wall_height,
+                tuple(turn_opening(o) for o in room.doors),
+                tuple(turn_opening(o) for o in room.windows))
+    objs = []
+    for o in scene.objects:
+        x, y = _turn(o.position, centre, k)
+        yaw = math.remainder(o.yaw + k * math.pi / 2, 2 * math.pi)
+        objs.append(replace(o, position=(x, y, o.position[2]), yaw=yaw))
+    return Scene(room, objs, dict(scene.meta))
+
+
+# ---- ordering -----------------------------------------------------------------------------
+def insertion_order(scene: Scene, rng: np.random.Generator, by_importance: bool
+                    ) -> list[PlacedObject]:
+    """The objects in the order the pipeline would insert them (see the module docstring);
+    ties in importance are broken at random."""
+    spec = room_spec(scene.room.room_type)
+    rank = {name: k for k, name in enumerate(spec.importance_order())}
+    out = []
+    for tier in (scene.first_tier, scene.second_tier):
+        objs = list(tier)
+        noise = rng.random(len(objs))
+        if by_importance:
+            keys = [(rank[o.category], r) for o, r in zip(objs, noise)]
+        else:
+            keys = [(r,) for r in noise]
+        out += [o for _, o in sorted(zip(keys, objs), key=lambda t: t[0])]
+    return out
+
+
+def placeable(removed: list[PlacedObject], kept: list[PlacedObject]) -> list[PlacedObject]:
+    """The removed objects that could be inserted next: first tier, or whose parent is kept."""
+    ids = {o.id for o in kept}
+    return [o for o in removed if o.support is None or o.support in ids]
+
+
+# ---- examples -----------------------------------------------------------------------------
+class ExampleSource:
+    """Makes batches of training examples for each module from a list of furnished rooms of
+    one type. A batch is a pure function of its seed, so a resumed run sees the same data."""
+
+    def __init__(self, room_type: str, scenes: list[Scene], resolution: int,
+                 location_resolution: int, augment: bool = True):
+        self.room_type = resolve_room_type(room_type)
+        self.spec = room_spec(self.room_type)
+        self.index = {n: k for k, n in enumerate(self.spec.names)}
+        self.scenes = scenes
+        self.resolution = resolution
+        self.location_resolution = location_resolution
+        self.augment = augment
+        self.renderer = TopDownRenderer(resolution, cache_size=64)
+
+    @property
+    def extent(self) -> float:
+        """Metres of room an image covers (the room type's size cap)."""
+        return ROOM_SIZE_CAP[self.room_type]
+
+    @property
+    def num_categories(self) -> int:
+        return len(self.spec.names)
+
+    def _scene(self, rng) -> Scene:
+        scene = self.scenes[rng.integers(len(self.scenes))]
+        return rotate_scene(scene, int(rng.integers(4))) if self.augment else scene
+
+    def counts(self, objects) -> np.ndarray:
+        c = np.zeros(self.num_categories, dtype=np.float32)
+        for o in objects:
+            c[self.index[o.category]] += 1
+        return c
+
+    # One example of each kind. Each returns a tuple of numpy arrays / numbers.
+    def category_example(self, rng):
+        scene = self._scene(rng)
+        order = insertion_order(scene, rng, by_importance=True)
+        k = int(rng.integers(len(order) + 1))
+        part = Scene(scene.room, order[:k])
+        image = self.renderer.render(part, room_frame(scene.room, self.resolution))
+        target = self.index[order[k].category] if k < len(order) else self.num_categories
+        return image, self.counts(order[:k]), target
+
+    def location_example(self, rng):
+        scene = self._scene(rng)
+        order = insertion_order(scene, rng, by_importance=False)
+        k = int(rng.integers(len(order) + 1))
+        kept, removed = order[:k], order[k:]
+        frame = room_frame(scene.room, self.resolution)
+        image = self.renderer.render(Scene(scene.room, kept), frame)
+        target = self.location_target(frame, placeable(removed, kept))
+        return image, target
+
+    def location_target(self, frame: Frame, objects) -> np.ndarray:
+        n = self.location_resolution
+        out = np.zeros((n, n), dtype=np.int64)
+        grid = Frame(frame.centre, frame.yaw, frame.extent, n)
+        for o in objects:
+            i, j = grid.world_to_pixel(o.position[:2])
+            if 0 <= i < n and 0 <= j < n:
+                out[i, j] = 1 + self.index[o.category]
+        return out
+
+    def _target_object(self, rng):
+        """A partial scene and one object that could be inserted into it next."""
+        scene = self._scene(rng)
+        order = insertion_order(scene, rng, by_importance=False)
+        k = int(rng.integers(len(order)))
+        kept, removed = order[:k], order[k:]
+        cands = placeable(removed, kept)
+        return Scene(scene.room, kept), cands[int(rng.integers(len(cands)))]
+
+    def orientation_example(self, rng):
+        part, obj = self._target_object(rng)
+        frame = room_frame(part.room, self.resolution)
+        image = self.renderer.render(part, local_frame(part.room, obj.position, frame.yaw,
+                                                       self.resolution))
+        theta = math.remainder(obj.yaw - frame.yaw, 2 * math.pi)
+        return image, self.index[obj.category], theta
+
+    def dimensions_example(self, rng):
+        part, obj = self._target_object(rng)
+        image = self.renderer.render(part, local_frame(part.room, obj.position, obj.yaw,
+                                                       self.resolution))
+        return image, self.index[obj.category], (math.log(obj.depth), math.log(obj.width))
+
+    # Batches as tensors.
+    def batch(self, module: str, seed, size: int) -> dict[str, torch.Tensor]:
+        rng = np.random.default_rng(seed)
+        if module == 'category':
+            ex = [self.category_example(rng) for _ in range(size)]
+            return {'image': _stack(e[0] for e in ex), 'counts': _stack(e[1] for e in ex),
+                    'target': torch.tensor([e[2] for e in ex])}
+        if module == 'location':
+            ex = [self.location_example(rng) for _ in range(size)]
+            return {'image': _stack(e[0] for e in ex), 'target': _stack(e[1] for e in ex)}
+        if module in ('orientation', 'snap'):
+            ex = [self.orientation_example(rng) for _ in range(size)]
+            theta = torch.tensor([e[2] for e in ex], dtype=torch.float32)
+            return {'image': _stack(e[0] for e in ex),
+                    'category': torch.tensor([e[1] for e in ex]),
+                    'theta': theta, 'snapped': is_snapped(theta).float()}
+        if module == 'dimensions':
+            ex = [self.dimensions_example(rng) for _ in range(size)]
+            return {'image': _stack(e[0] for e in ex),
+                    'category': torch.tensor([e[1] for e in ex]),
+                    'target': torch.tensor([e[2] for e in ex], dtype=torch.float32)}
+        raise ValueError(f'unknown module {module!r}; expected one of {", ".join(MODULES)}')
+
+
+def _stack(arrays) -> torch.Tensor:
+    return torch.from_numpy(np.stack(list(arrays)))

@@ -1,0 +1,82 @@
+"""Location module (paper, section 4.2): where in the room an object of each category goes."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import torch
+from torch import nn
+
+from .blocks import ResNetEncoder, UpBlock
+from .config import ModelConfig
+
+
+class LocationModel(nn.Module):
+    """ResNet-34-style encoder and a decoder of nearest-neighbour upsampling + 3x3
+    convolutions to ``(C + 1) x L x L`` logits (L = ``location_resolution``). Channel 0 is
+    "no object centred here", channel ``1 + c`` category ``c``. Dropout before and after the
+    encoder and before the last 1x1 convolution, as in the paper."""
+
+    def __init__(self, in_channels: int, num_categories: int, cfg: ModelConfig):
+        super().__init__()
+        self.num_categories = num_categories
+        self.encoder = ResNetEncoder(in_channels, cfg.location_encoder)
+        bottleneck = cfg.resolution // self.encoder.downsampling
+        if bottleneck < 1 or cfg.location_resolution % bottleneck:
+            raise ValueError(f'a {cfg.resolution} px input reduced {self.encoder.downsampling}x '
+                             f'cannot be decoded to {cfg.location_resolution} px')
+        ups = int(round(math.log2(cfg.location_resolution // bottleneck)))
+        if 2 ** ups * bottleneck != cfg.location_resolution:
+            raise ValueError('location_resolution must be a power-of-two multiple of the '
+                             'encoder output size')
+        widths = list(cfg.location_decoder_widths[:ups])
+        widths += [widths[-1] if widths else self.encoder.out_channels] * (ups - len(widths))
+        layers, cin = [], self.encoder.out_channels
+        for w in widths:
+            layers.append(UpBlock(cin, w))
+            cin = w
+        self.decoder = nn.Sequential(*layers)
+        p = cfg.location_dropout
+        self.drop_in, self.drop_mid, self.drop_out = nn.Dropout(p), nn.Dropout(p), nn.Dropout(p)
+        self.final = nn.Conv2d(cin, num_categories + 1, 1)
+
+    def forward(self, image: torch.Tensor) -> torch.Tensor:
+        x = self.drop_mid(self.encoder(self.drop_in(image)))
+        return self.final(self.drop_out(self.decoder(x)))
+
+
+def location_loss(logits: torch.Tensor, target: torch.Tensor, empty_weight: float
+                  ) -> torch.Tensor:
+    """Pixel-wise cross-entropy where "empty" pixels weigh ``empty_weight`` and object
+    centroids 1 (the targets are sparse: a handful of centroids among thousands of pixels)."""
+    weight = torch.ones(logits.shape[1], device=logits.device)
+    weight[0] = empty_weight
+    return nn.functional.cross_entropy(logits, target, weight=weight)
+
+
+def location_distribution(logits: torch.Tensor, category: int, mask: np.ndarray,
+                          temperature: float = 0.8) -> np.ndarray | None:
+    """The sampling distribution over the ``L x L`` grid for ``category`` (index into the
+    room type's categories): the category's channel of the per-pixel softmax, zero outside
+    ``mask`` (the floor, or the surfaces that can support a second-tier category), then
+    tempered as ``p ** (1 / temperature)``. ``None`` when the mask leaves nothing."""
+    if temperature <= 0:
+        raise ValueError('the location temperature must be positive')
+    with torch.no_grad():
+        logp = torch.log_softmax(logits.float(), dim=0)[1 + category].cpu().numpy()
+    logp = logp.astype(np.float64) / temperature
+    logp[~mask] = -np.inf
+    top = logp.max()
+    if not np.isfinite(top):
+        return None
+    p = np.exp(logp - top)
+    return p / p.sum()
+
+
+def sample_pixel(p: np.ndarray, rng: np.random.Generator, n: int = 1) -> np.ndarray:
+    """``n`` (row, col) pixels drawn from the grid distribution ``p`` (with replacement),
+    each with a uniform offset inside its pixel: continuous coordinates."""
+    flat = rng.choice(p.size, size=n, p=p.ravel())
+    rows, cols = np.divmod(flat, p.shape[1])
+    jitter = rng.uniform(-0.5, 0.5, size=(n, 2))
+    return np.stack([rows, cols], -1) + jitter

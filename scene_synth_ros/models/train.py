@@ -1,0 +1,300 @@
+"""Training of the four modules of one room type, resumable, with a fixed seed.
+
+Every batch and every draw of dropout / CVAE noise is a pure function of (seed, module,
+step), so a run stopped and resumed from its last checkpoint continues exactly as if it had
+never stopped. Progress goes to a tqdm bar and, as JSON lines, to ``<run>/<room>/log.jsonl``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+import json
+import math
+from pathlib import Path
+import time
+from typing import Callable
+
+import numpy as np
+import torch
+from torch import nn
+
+from ..categories import ROOM_TYPES, resolve_room_type
+from ..catalog import variants
+from ..categories import room_spec
+from ..corpus.generate import generate_corpus
+from ..scene import Scene
+from .bundle import NETWORKS, Bundle, build_networks, save_bundle
+from .config import ModuleSchedule, PipelineConfig, resolve_device
+from .dimensions import Discriminator, box_sdf, dimensions_elbo
+from .examples import ExampleSource
+from .location import location_loss
+from .orientation import orientation_elbo, orientation_target
+
+VAL_BATCH = 64
+
+
+@dataclass
+class RoomCorpus:
+    train: list[Scene]
+    val: list[Scene]
+
+
+def load_corpus(room_type: str, cfg: PipelineConfig, workers: int | None = None) -> RoomCorpus:
+    """Training rooms 0..N-1 and held-out rooms N..N+V-1 of the corpus seed."""
+    t = cfg.train
+    rooms = list(generate_corpus(room_type, t.train_rooms + t.val_rooms, seed=t.corpus_seed,
+                                 workers=workers))
+    return RoomCorpus(rooms[:t.train_rooms], rooms[t.train_rooms:])
+
+
+def model_cooccurrence(room_type: str, scenes: list[Scene]) -> tuple[list[str], torch.Tensor]:
+    """How often each pair of catalog models appears in the same training room."""
+    models = [v.model_id for c in room_spec(room_type).names for v in variants(c)]
+    index = {m: k for k, m in enumerate(models)}
+    counts = torch.zeros(len(models), len(models))
+    for s in scenes:
+        ids = sorted({index[o.model_id] for o in s.objects if o.model_id in index})
+        if ids:
+            t = torch.tensor(ids)
+            counts[t[:, None], t[None, :]] += 1
+    return models, counts
+
+
+def _step_seed(seed: int, module: str, step: int) -> list[int]:
+    return [seed, NETWORKS.index(module), step]
+
+
+def _lr(sched: ModuleSchedule, step: int) -> float:
+    # Cosine decay to a tenth of the base rate: short CPU budgets still end on a small step.
+    return sched.lr * (0.1 + 0.45 * (1 + math.cos(math.pi * step / max(sched.steps, 1))))
+
+
+# ---- losses and metrics ---------------------------------------------------------------------
+def batch_loss(module: str, net: nn.Module, batch: dict, cfg: PipelineConfig, device,
+               disc: nn.Module | None = None, extent: float = 0.0
+               ) -> tuple[torch.Tensor, dict[str, float]]:
+    """The loss a module is trained on, and the metrics of that batch (``extent``: metres
+    an image covers, for the discriminator's SDF)."""
+    b = {k: v.to(device) for k, v in batch.items()}
+    t = cfg.train
+    if module == 'category':
+        logits = net(b['image'], b['counts'])
+        loss = nn.functional.cross_entropy(logits, b['target'])
+        top5 = logits.topk(5, dim=1).indices
+        return loss, {'loss': loss.item(),
+                      'top1': (top5[:, 0] == b['target']).float().mean().item(),
+                      'top5': (top5 == b['target'][:, None]).any(1).float().mean().item()}
+    if module == 'location':
+        loss = location_loss(net(b['image']), b['target'], t.empty_weight)
+        return loss, {'loss': loss.item()}
+    if module == 'orientation':
+        target = orientation_target(b['theta'])
+        out, mu, logvar = net(b['image'], b['category'], target)
+        loss, nelbo = orientation_elbo(out, target, mu, logvar, t.kl_weight)
+        return loss, {'loss': loss.item(), 'neg_elbo': nelbo.mean().item()}
+    if module == 'snap':
+        logits = net(b['image'], b['category'])
+        loss = nn.functional.binary_cross_entropy_with_logits(logits, b['snapped'])
+        acc = ((logits > 0).float() == b['snapped']).float().mean().item()
+        return loss, {'loss': loss.item(), 'accuracy': acc}
+    if module == 'dimensions':
+        out, mu, logvar = net(b['image'], b['category'], b['target'])
+        loss, nelbo = dimensions_elbo(out, b['target'], mu, logvar, t.kl_weight)
+        metrics = {'loss': loss.item(), 'neg_elbo': nelbo.mean().item()}
+        if disc is not None and t.adversarial_weight > 0:
+            fake = disc(b['image'], box_sdf(out, b['image'].shape[-1], extent), b['category'])
+            adv = nn.functional.binary_cross_entropy_with_logits(fake, torch.ones_like(fake))
+            loss = loss + t.adversarial_weight * adv
+            metrics['adversarial'] = adv.item()
+        return loss, metrics
+    raise ValueError(f'unknown module {module!r}')
+
+
+def evaluate(module: str, net: nn.Module, source: ExampleSource, cfg: PipelineConfig, device,
+             seed: int, examples: int) -> dict[str, float]:
+    """Held-out metrics of one module: the mean over ``examples`` fixed examples."""
+    net.eval()
+    totals: dict[str, float] = {}
+    n = 0
+    with torch.no_grad():
+        for k in range(0, examples, VAL_BATCH):
+            size = min(VAL_BATCH, examples - k)
+            batch = source.batch(module, [seed, 10_000 + NETWORKS.index(module), k], size)
+            torch.manual_seed(seed + k)
+            _, m = batch_loss(module, net, batch, cfg, device)
+            for key, v in m.items():
+                totals[key] = totals.get(key, 0.0) + v * size
+            n += size
+    net.train()
+    return {k: v / n for k, v in totals.items()}
+
+
+# ---- one module ------------------------------------------------------------------------------
+def train_module(module: str, net: nn.Module, source: ExampleSource, val: ExampleSource,
+                 cfg: PipelineConfig, device, run_dir: Path, log: Callable[[dict], None],
+                 progress: bool = True) -> dict[str, float]:
+    from tqdm import tqdm
+    t = cfg.train
+    sched: ModuleSchedule = getattr(t, module)
+    net.to(device).train()
+    opt = torch.optim.Adam(net.parameters(), lr=sched.lr, weight_decay=sched.weight_decay)
+    disc = disc_opt = None
+    if module == 'dimensions' and t.adversarial_weight > 0:
+        disc = Discriminator(net.encoder.body.stem[0].in_channels, net.head.weight.shape[0],
+                             cfg.model).to(device)
+        disc_opt = torch.optim.Adam(disc.parameters(), lr=sched.lr, betas=(0.5, 0.999))
+    ckpt = run_dir / f'{module}.ckpt'
+    start = 0
+    if ckpt.is_file():
+        state = torch.load(ckpt, map_location=device, weights_only=True)
+        net.load_state_dict(state['net'])
+        opt.load_state_dict(state['opt'])
+        if disc is not None:
+            disc.load_state_dict(state['disc'])
+            disc_opt.load_state_dict(state['disc_opt'])
+        start = int(state['step'])
+
+    def save(step: int) -> None:
+        state = {'net': net.state_dict(), 'opt': opt.state_dict(), 'step': step}
+        if disc is not None:
+            state.update(disc=disc.state_dict(), disc_opt=disc_opt.state_dict())
+        tmp = ckpt.with_suffix('.tmp')
+        torch.save(state, tmp)
+        tmp.replace(ckpt)
+
+    bar = tqdm(range(start, sched.steps), initial=start, total=sched.steps,
+               desc=f'{source.room_type}/{module}', unit='step', disable=not progress,
+               mininterval=5.0)
+    running: dict[str, float] = {}
+    t0 = time.perf_counter()
+    for step in bar:
+        for g in opt.param_groups:
+            g['lr'] = _lr(sched, step)
+        batch = source.batch(module, _step_seed(t.seed, module, step), sched.batch_size)
+        torch.manual_seed(int(np.random.SeedSequence(_step_seed(t.seed, module, step))
+                              .generate_state(1)[0]))
+        if disc is not None:
+            _discriminator_step(disc, disc_opt, net, batch, device, source.extent)
+        loss, metrics = batch_loss(module, net, batch, cfg, device, disc, source.extent)
+        opt.zero_grad(set_to_none=True)
+        loss.backward()
+        opt.step()
+        for k, v in metrics.items():
+            running[k] = 0.95 * running.get(k, v) + 0.05 * v
+        done = step + 1
+        if done % 25 == 0:
+            bar.set_postfix({k: f'{v:.3f}' for k, v in running.items()}, refresh=False)
+            log({'module': module, 'step': done, 'lr': _lr(sched, step),
+                 'seconds': round(time.perf_counter() - t0, 1),
+                 **{f'train_{k}': round(v, 5) for k, v in running.items()}})
+        if done % t.val_every == 0 or done == sched.steps:
+            m = evaluate(module, net, val, cfg, device, t.seed, t.val_examples)
+            log({'module': module, 'step': done, **{f'val_{k}': round(v, 5)
+                                                       for k, v in m.items()}})
+        if done % t.checkpoint_every == 0 or done == sched.steps:
+            save(done)
+    bar.close()
+    net.eval()
+    return evaluate(module, net, val, cfg, device, t.seed, t.val_examples)
+
+
+def _discriminator_step(disc, disc_opt, net, batch, device, extent: float) -> None:
+    image = batch['image'].to(device)
+    category = batch['category'].to(device)
+    target = batch['target'].to(device)
+    with torch.no_grad():
+        fake_dims = net.sample(image, category)
+    n = image.shape[-1]
+    real = disc(image, box_sdf(target, n, extent), category)
+    fake = disc(image, box_sdf(fake_dims, n, extent), category)
+    loss = nn.functional.binary_cross_entropy_with_logits(real, torch.ones_like(real)) + \
+        nn.functional.binary_cross_entropy_with_logits(fake, torch.zeros_like(fake))
+    disc_opt.zero_grad(set_to_none=True)
+    loss.backward()
+    disc_opt.step()
+
+
+# ---- a room type -------------------------------------------------------------------------------
+def component_table(nets: dict[str, nn.Module], val: ExampleSource, cfg: PipelineConfig, device,
+                    room_type: str) -> dict[str, dict[str, float]]:
+    """The paper's component metrics on held-out rooms, for the given networks and for
+    freshly initialised ones of the same shape (seeded)."""
+    torch.manual_seed(cfg.train.seed)
+    fresh = build_networks(room_type, cfg.model)
+    out: dict[str, dict[str, float]] = {}
+    for name in NETWORKS:
+        for label, net in (('trained', nets[name]), ('random', fresh[name])):
+            net.to(device)
+            m = evaluate(name, net, val, cfg, device, cfg.train.seed + 1, cfg.train.val_examples)
+            out.setdefault(name, {}).update({f'{label}_{k}': v for k, v in m.items()
+                                             if k != 'adversarial'})
+    return out
+
+
+def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights_dir: Path,
+                    progress: bool = True, echo: Callable[[str], None] = print) -> Bundle:
+    rt = resolve_room_type(room_type)
+    device = resolve_device(cfg.device)
+    t = cfg.train
+    if t.threads:
+        torch.set_num_threads(t.threads)
+    run_dir = Path(run_root) / rt
+    run_dir.mkdir(parents=True, exist_ok=True)
+    (run_dir / 'config.json').write_text(cfg.to_json() + '\n')
+    log_file = open(run_dir / 'log.jsonl', 'a', encoding='utf-8')
+
+    def log(entry: dict) -> None:
+        log_file.write(json.dumps({'room_type': rt, **entry}) + '\n')
+        log_file.flush()
+
+    echo(f'{rt}: making {t.train_rooms} training and {t.val_rooms} held-out corpus rooms '
+         f'(corpus seed {t.corpus_seed})')
+    corpus = load_corpus(rt, cfg, workers=t.threads or None)
+    m = cfg.model
+    source = ExampleSource(rt, corpus.train, m.resolution, m.location_resolution)
+    val = ExampleSource(rt, corpus.val, m.resolution, m.location_resolution)
+    torch.manual_seed(t.seed)
+    nets = build_networks(rt, m)
+    final: dict[str, dict[str, float]] = {}
+    for name in NETWORKS:
+        final[name] = train_module(name, nets[name], source, val, cfg, device, run_dir, log,
+                                   progress)
+        echo(f'{rt}/{name}: ' + ', '.join(f'{k} {v:.4f}' for k, v in final[name].items()))
+    table = component_table(nets, val, cfg, device, rt)
+    models, co = model_cooccurrence(rt, corpus.train)
+    bundle = Bundle(rt, cfg, nets, co, models, {'components': table})
+    for net in nets.values():
+        net.to('cpu')
+    out = Path(weights_dir) / f'{rt}.pt'
+    save_bundle(bundle, out)
+    log({'event': 'exported', 'path': str(out), 'components': table})
+    log_file.close()
+    echo(format_components({rt: table}))
+    echo(f'{rt}: weights written to {out}')
+    return bundle
+
+
+def format_components(tables: dict[str, dict[str, dict[str, float]]]) -> str:
+    """The paper's component table, trained beside random initialisation."""
+    rows = [('category top-1 accuracy', 'category', 'top1', True),
+            ('category top-5 accuracy', 'category', 'top5', True),
+            ('location cross-entropy', 'location', 'loss', False),
+            ('orientation neg. ELBO', 'orientation', 'neg_elbo', False),
+            ('snap accuracy', 'snap', 'accuracy', True),
+            ('dimensions neg. ELBO', 'dimensions', 'neg_elbo', False)]
+    lines = [f'{"room type":10s} {"metric":26s} {"trained":>10s} {"random":>10s}']
+    for rt, table in tables.items():
+        for label, module, key, _higher in rows:
+            tr = table[module][f'trained_{key}']
+            rn = table[module][f'random_{key}']
+            lines.append(f'{rt:10s} {label:26s} {tr:10.4f} {rn:10.4f}')
+    return '\n'.join(lines)
+
+
+def train(room_types: list[str], cfg: PipelineConfig, run_root: Path, weights_dir: Path,
+          progress: bool = True, echo: Callable[[str], None] = print) -> dict[str, Bundle]:
+    out = {}
+    for rt in room_types:
+        if rt not in ROOM_TYPES:
+            raise ValueError(f'unknown room type {rt!r}')
+        out[rt] = train_room_type(rt, cfg, run_root, weights_dir, progress, echo)
+    return out
