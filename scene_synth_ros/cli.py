@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 from pathlib import Path
 import sys
 import time
@@ -251,6 +252,25 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument('--categories', help='comma-separated categories (default: all)')
     c.set_defaults(func=cmd_catalog)
 
+    c = sub.add_parser('generate', help='furnish an empty room with the trained pipeline')
+    c.add_argument('--room-type', default='bedroom', help=f'{"|".join(ROOM_TYPES)}')
+    c.add_argument('--layout', help='a room layout JSON (default: a corpus-like empty room '
+                   'drawn from the seed)')
+    _synthesis_options(c)
+    c.set_defaults(func=cmd_generate)
+
+    c = sub.add_parser('complete', help='add the missing objects to a partial room')
+    c.add_argument('scene', help='a room layout or scene JSON with the objects to keep')
+    _synthesis_options(c)
+    c.set_defaults(func=cmd_complete)
+
+    c = sub.add_parser('suggest', help='propose k distinct next objects for a room')
+    c.add_argument('scene', help='a room layout or scene JSON')
+    c.add_argument('-k', type=int, default=5, help='number of proposals')
+    _synthesis_options(c, out=False)
+    c.add_argument('--out', help='write the proposals (JSON list of objects) here')
+    c.set_defaults(func=cmd_suggest)
+
     c = sub.add_parser('train', help='train the four networks of a room type (resumable)')
     c.add_argument('--room-type', default='all', help='bedroom, living, office, bathroom or all')
     c.add_argument('--config', help='model and training configuration (YAML; default: '
@@ -268,6 +288,133 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument('files', nargs='+')
     c.set_defaults(func=cmd_validate)
     return p
+
+
+# ---- synthesis ---------------------------------------------------------------------------
+def _synthesizer(args):
+    from .synth import SynthConfig, Synthesizer, SynthesisError
+    cfg = SynthConfig()
+    if getattr(args, 'temperature', None) is not None:
+        if not args.temperature > 0:
+            raise UserError(f'--temperature must be positive, got {args.temperature}')
+        cfg.location_temperature = args.temperature
+    if getattr(args, 'max_objects', None) is not None:
+        if args.max_objects < 1:
+            raise UserError(f'--max-objects must be at least 1, got {args.max_objects}')
+        cfg.max_objects = args.max_objects
+    if getattr(args, 'device', None):
+        cfg.device = args.device
+    try:
+        return Synthesizer(getattr(args, 'weights_dir', None), cfg)
+    except SynthesisError as e:
+        raise UserError(str(e)) from None
+
+
+def _run_synthesis(fn, *a):
+    from .models.bundle import BundleError
+    from .synth import SynthesisError
+    try:
+        return fn(*a)
+    except (BundleError, SynthesisError) as e:
+        raise UserError(str(e)) from None
+
+
+def _object_table(objects, title: str = '') -> str:
+    lines = [title] if title else []
+    lines.append(f'  {"id":18s} {"category":16s} {"model":18s} {"x":>6s} {"y":>6s} {"z":>5s} '
+                 f'{"yaw°":>6s} {"w x d x h (m)":>17s}  on')
+    for o in objects:
+        lines.append(f'  {o.id:18s} {o.category:16s} {o.model_id:18s} {o.position[0]:6.2f} '
+                     f'{o.position[1]:6.2f} {o.position[2]:5.2f} '
+                     f'{math.degrees(o.yaw):6.1f} {o.width:5.2f}x{o.depth:4.2f}x{o.height:4.2f}'
+                     f'  {o.support or ""}')
+    return '\n'.join(lines)
+
+
+def _timing_line(result) -> str:
+    parts = ', '.join(f'{k} {v * 1000:.0f}' for k, v in result.timings.items())
+    return (f'{len(result.added)} objects added in {result.seconds:.3f} s (stopped: '
+            f'{result.stopped}); ms per module: {parts}')
+
+
+def _write_outputs(scene, args, title: str) -> None:
+    from .schema import save_scene
+    if args.out:
+        Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+        save_scene(scene, args.out)
+        print(f'wrote {args.out}')
+    if args.png:
+        from .plot import save_png
+        Path(args.png).parent.mkdir(parents=True, exist_ok=True)
+        save_png(scene, args.png, title=title)
+        print(f'wrote {args.png}')
+
+
+def cmd_generate(args) -> int:
+    from .geometry import check_scene
+    synth = _synthesizer(args)
+    if args.layout:
+        room = _load(args.layout).room
+        title = f'{Path(args.layout).stem} (seed {args.seed})'
+    else:
+        from .corpus.generate import empty_room
+        rt = _room_types(args.room_type)
+        if len(rt) != 1:
+            raise UserError('generate furnishes one room: give one --room-type, not all')
+        room = empty_room(rt[0], args.seed)
+        title = f'{rt[0]} (seed {args.seed})'
+    result = _run_synthesis(synth.generate, room, args.seed)
+    print(_object_table(result.scene.objects, f'{room.room_type}, {room.area:.1f} m2:'))
+    print(_timing_line(result))
+    print(f'physical check: {check_scene(result.scene).summary()}')
+    _write_outputs(result.scene, args, title)
+    return 0
+
+
+def cmd_complete(args) -> int:
+    from .geometry import check_scene
+    synth = _synthesizer(args)
+    scene = _load(args.scene)
+    result = _run_synthesis(synth.complete, scene, args.seed)
+    print(_object_table(scene.objects, f'kept ({len(scene.objects)}):'))
+    print(_object_table(result.added, f'added ({len(result.added)}):'))
+    print(_timing_line(result))
+    print(f'physical check: {check_scene(result.scene).summary()}')
+    _write_outputs(result.scene, args, f'{Path(args.scene).stem} completed (seed {args.seed})')
+    return 0
+
+
+def cmd_suggest(args) -> int:
+    if args.k < 1:
+        raise UserError(f'-k must be at least 1, got {args.k}')
+    synth = _synthesizer(args)
+    scene = _load(args.scene)
+    found = _run_synthesis(synth.suggest, scene, args.k, args.seed)
+    print(_object_table(found, f'{len(found)} proposals for the next object of '
+                               f'{Path(args.scene).name}:'))
+    if args.out:
+        Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+        Path(args.out).write_text(json.dumps([o.to_dict() for o in found], indent=2) + '\n')
+        print(f'wrote {args.out}')
+    if args.png:
+        from .plot import save_grid
+        from .scene import Scene
+        shown = [Scene(scene.room, scene.objects + [o]) for o in found]
+        save_grid(shown, args.png, ncols=min(len(shown), 3) or 1,
+                  titles=[f'+ {o.category}' for o in found])
+        print(f'wrote {args.png}')
+    return 0
+
+
+def _synthesis_options(c, out: bool = True) -> None:
+    c.add_argument('--seed', type=int, default=0)
+    c.add_argument('--temperature', type=float, help='location temperature (default 0.8)')
+    c.add_argument('--max-objects', type=int, help='cap on objects in the room (default 30)')
+    c.add_argument('--weights-dir', help="trained bundles (default: the package's weights/)")
+    c.add_argument('--device', choices=('cpu', 'cuda', 'auto'))
+    if out:
+        c.add_argument('--out', help='write the scene JSON here')
+    c.add_argument('--png', help='write a top-down picture here')
 
 
 # ---- training ----------------------------------------------------------------------------

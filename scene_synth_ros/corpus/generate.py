@@ -13,7 +13,7 @@ import numpy as np
 
 from ..categories import CATEGORIES, ROOM_TYPES, resolve_room_type
 from ..geometry import check_scene
-from ..scene import Scene
+from ..scene import Room, Scene
 from .furnish import draw_plan, pick_variant, place_first_tier, place_second_tier
 from .layout import Layout
 from .shell import sample_shell
@@ -99,3 +99,9 @@ def generate_corpus(room_type: str, n: int, seed: int = 0, workers: int | None =
     ctx = mp.get_context('fork' if 'fork' in mp.get_all_start_methods() else 'spawn')
     with ctx.Pool(workers) as pool:
         yield from pool.imap(_work, reqs, chunksize=16)
+
+
+def empty_room(room_type: str, seed: int = 0, index: int = 0) -> Room:
+    """The empty shell of corpus room (``seed``, ``index``): rooms shaped and sized like the
+    training rooms, for synthesis from scratch."""
+    return generate_room(room_type, seed, index).room

@@ -54,7 +54,8 @@ class ModuleSchedule:
 
 @dataclass
 class TrainConfig:
-    """How the networks are trained. Steps are per module and per room type."""
+    """How the networks are trained. Steps are per module and per room type. The defaults
+    are the compact configuration's (``config/compact.yaml``)."""
 
     seed: int = 0
     corpus_seed: int = 0
@@ -62,13 +63,13 @@ class TrainConfig:
     val_rooms: int = 200
     val_examples: int = 512
     val_every: int = 250
-    checkpoint_every: int = 250
+    checkpoint_every: int = 100
     threads: int = 0                       # torch threads; 0 = all cores
     category: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1500))
-    location: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1500))
-    orientation: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1000))
-    snap: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(500))
-    dimensions: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1000))
+    location: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1200, 32))
+    orientation: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(800))
+    snap: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(400))
+    dimensions: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(800))
     empty_weight: float = 0.1              # location: weight of empty pixels vs centroids
     kl_weight: float = 1.0                 # CVAE: weight of the KL term
     adversarial_weight: float = 0.05       # dimensions: weight of the discriminator's loss

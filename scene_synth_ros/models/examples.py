@@ -66,7 +66,8 @@ def _turn(xy, centre, k: int):
 
 def rotate_scene(scene: Scene, k: int) -> Scene:
     """The scene turned by ``k`` x 90 degrees counter-clockwise about its bounding-box
-    centre (exact: coordinates are only swapped and negated)."""
+    centre (coordinates are only swapped and negated about the centre, so the images of the
+    turned scene are the turned images, pixel for pixel)."""
     k %= 4
     if k == 0:
         return scene

@@ -131,7 +131,10 @@ def evaluate(module: str, net: nn.Module, source: ExampleSource, cfg: PipelineCo
 # ---- one module ------------------------------------------------------------------------------
 def train_module(module: str, net: nn.Module, source: ExampleSource, val: ExampleSource,
                  cfg: PipelineConfig, device, run_dir: Path, log: Callable[[dict], None],
-                 progress: bool = True) -> dict[str, float]:
+                 progress: bool = True, until: int | None = None) -> dict[str, float] | None:
+    """Train ``module`` from its last checkpoint in ``run_dir`` (if any) to the end of its
+    schedule and return its held-out metrics; with ``until``, stop after that step (saving a
+    checkpoint) and return None, as an interrupted run would."""
     from tqdm import tqdm
     t = cfg.train
     sched: ModuleSchedule = getattr(t, module)
@@ -190,8 +193,11 @@ def train_module(module: str, net: nn.Module, source: ExampleSource, val: Exampl
             m = evaluate(module, net, val, cfg, device, t.seed, t.val_examples)
             log({'module': module, 'step': done, **{f'val_{k}': round(v, 5)
                                                        for k, v in m.items()}})
-        if done % t.checkpoint_every == 0 or done == sched.steps:
+        if done % t.checkpoint_every == 0 or done == sched.steps or done == until:
             save(done)
+        if done == until:
+            bar.close()
+            return None
     bar.close()
     net.eval()
     return evaluate(module, net, val, cfg, device, t.seed, t.val_examples)

@@ -1,0 +1,411 @@
+"""Scene synthesis with the four trained modules (paper, section 5).
+
+One insertion: the category module draws the next category (or STOP); the location module
+gives a distribution over the room for it, masked to the floor (or, for a second-tier
+category, to the surfaces observed to support it) and tempered; at each drawn location the
+orientation module draws a facing (snapped to the room's axes when its classifier says so)
+and the dimensions module a footprint; the catalog model nearest that footprint is placed,
+preferring models that co-occur in the training rooms with those already there. A placement
+is rejected if it collides with first-tier furniture, leaves the floor, enters a door's clear
+zone, cuts the robot path between the doors, or (second tier) stands less than 70 % on its
+parent or overlaps its neighbours there; then the next model is tried, then the next
+location, and if nothing fits the category is drawn again without the failed ones.
+
+Three modes: ``generate`` (an empty room), ``complete`` (a partial room: keeps what is
+there) and ``suggest`` (k distinct proposals for the next object, nothing committed). Each is
+reproducible from its seed.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+import math
+from pathlib import Path
+import time
+
+import numpy as np
+import shapely
+import torch
+
+from . import catalog
+from .categories import CATEGORIES, resolve_room_type, room_spec
+from .geometry import (COLLISION_TOLERANCE, FLOOR_TOLERANCE, MIN_SUPPORT, door_zone,
+                       doors_connected, shrunk_footprint)
+from .models.bundle import Bundle, BundleError, bundle_path, load_bundle
+from .models.config import resolve_device
+from .models.category import category_probabilities
+from .models.examples import local_frame, room_frame
+from .models.location import location_distribution, sample_pixel
+from .models.orientation import decode_angle, snap_angle
+from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer
+from .scene import PlacedObject, Room, Scene
+
+MODULES = ('render', 'category', 'location', 'orientation', 'dimensions', 'insertion')
+
+
+class SynthesisError(Exception):
+    """A room the synthesizer cannot work on, said in one sentence."""
+
+
+@dataclass
+class SynthConfig:
+    location_temperature: float = 0.8   # tau of the location distribution (paper: 0.8)
+    max_objects: int = 30               # hard cap on objects in a room
+    location_samples: int = 12          # locations tried for one category draw...
+    location_batch: int = 4             # ...drawn and decoded this many at a time
+    models_per_location: int = 3        # catalog models tried at one location
+    category_attempts: int = 4          # category draws per insertion before giving up
+    fit_slack: float = 0.15             # log-footprint slack within which co-occurrence decides
+    snap_threshold: float = 0.5         # snap when the classifier's probability is above this
+    device: str = 'cpu'
+
+
+@dataclass
+class Synthesis:
+    """The outcome of ``generate`` / ``complete``."""
+
+    scene: Scene
+    added: list[PlacedObject]
+    stopped: str                        # 'stop', 'max_objects' or 'nothing_fits'
+    seconds: float
+    timings: dict[str, float] = field(default_factory=dict)   # seconds per module
+
+
+@dataclass
+class _Context:
+    """Per-room state shared by the insertions into one room."""
+
+    room: Room
+    spec: object
+    bundle: Bundle
+    frame: Frame
+    grid: Frame                   # the location module's output grid
+    floor_mask: np.ndarray        # (L, L) pixel centres on the floor
+    door_mask: np.ndarray         # (L, L) pixel centres in a door's clear zone
+    floor: object                 # floor polygon grown by the floor tolerance
+    zones: list                   # door clear zones
+    rng: np.random.Generator
+    gen: torch.Generator
+    timings: dict[str, float]
+    connected: dict = field(default_factory=dict)   # (scene id, object count) -> bool
+
+
+class Synthesizer:
+    """Furnishes rooms with the shipped (or given) weights. Bundles load on first use."""
+
+    def __init__(self, weights_dir: str | Path | None = None,
+                 config: SynthConfig | None = None):
+        from .paths import weights_dir as default_weights
+        self.weights_dir = Path(weights_dir) if weights_dir else default_weights()
+        self.config = config or SynthConfig()
+        try:
+            self.device = resolve_device(self.config.device)
+        except ValueError as e:
+            raise SynthesisError(str(e)) from None
+        self._bundles: dict[str, Bundle] = {}
+        self._renderers: dict[int, TopDownRenderer] = {}
+
+    # ---- set-up ---------------------------------------------------------------------------
+    def bundle(self, room_type: str) -> Bundle:
+        """The networks of ``room_type``; raises ``BundleError`` naming a bad file."""
+        rt = resolve_room_type(room_type)
+        if rt not in self._bundles:
+            self._bundles[rt] = load_bundle(bundle_path(self.weights_dir, rt), self.device)
+        return self._bundles[rt]
+
+    def load_all(self) -> None:
+        from .categories import ROOM_TYPES
+        for rt in ROOM_TYPES:
+            self.bundle(rt)
+
+    def _renderer(self, resolution: int) -> TopDownRenderer:
+        if resolution not in self._renderers:
+            self._renderers[resolution] = TopDownRenderer(resolution, cache_size=16)
+        return self._renderers[resolution]
+
+    def _context(self, room: Room, seed: int) -> _Context:
+        try:
+            rt = resolve_room_type(room.room_type)
+        except KeyError as e:
+            raise SynthesisError(str(e.args[0])) from None
+        bundle = self.bundle(rt)
+        m = bundle.config.model
+        try:
+            frame = room_frame(room, m.resolution)
+        except ValueError as e:
+            raise SynthesisError(str(e)) from None
+        grid = Frame(frame.centre, frame.yaw, frame.extent, m.location_resolution)
+        n = m.location_resolution
+        ii, jj = np.meshgrid(np.arange(n), np.arange(n), indexing='ij')
+        centres = grid.pixel_to_world(np.stack([ii, jj], -1)).reshape(-1, 2)
+        floor_mask = shapely.contains_xy(room.polygon, centres[:, 0], centres[:, 1])
+        zones = [door_zone(room, d) for d in room.doors]
+        door_mask = np.zeros(n * n, dtype=bool)
+        for z in zones:
+            door_mask |= shapely.contains_xy(z, centres[:, 0], centres[:, 1])
+        gen = torch.Generator().manual_seed(int(seed) & 0x7FFF_FFFF_FFFF_FFFF)
+        return _Context(room, room_spec(rt), bundle, frame, grid, floor_mask.reshape(n, n),
+                        door_mask.reshape(n, n),
+                        room.polygon.buffer(FLOOR_TOLERANCE, join_style='mitre'), zones,
+                        np.random.default_rng(seed), gen, {k: 0.0 for k in MODULES})
+
+    # ---- public modes ---------------------------------------------------------------------
+    def generate(self, room: Room | Scene, seed: int = 0) -> Synthesis:
+        """Furnish ``room`` from empty (objects of a Scene given here are dropped)."""
+        if isinstance(room, Scene):
+            room = room.room
+        return self.complete(Scene(room, []), seed)
+
+    def complete(self, scene: Scene, seed: int = 0) -> Synthesis:
+        """Add objects to ``scene`` (a copy; what is there stays) until the category module
+        says STOP, ``max_objects`` is reached or nothing more fits."""
+        t0 = time.perf_counter()
+        ctx = self._context(scene.room, seed)
+        out = scene.copy()
+        added: list[PlacedObject] = []
+        stopped = 'stop'
+        with torch.inference_mode():
+            while True:
+                if len(out.objects) >= self.config.max_objects:
+                    stopped = 'max_objects'
+                    break
+                obj, why = self._insert_one(ctx, out)
+                if obj is None:
+                    stopped = why
+                    break
+                out.objects.append(obj)
+                added.append(obj)
+        out.meta.update({'generator': 'scene_synth_ros', 'seed': int(seed),
+                         'weights': ctx.bundle.config.name})
+        return Synthesis(out, added, stopped, time.perf_counter() - t0, dict(ctx.timings))
+
+    def next_object(self, scene: Scene, seed: int = 0) -> PlacedObject | None:
+        """One more object for ``scene`` (not added to it), or None when the model says STOP
+        or nothing fits."""
+        ctx = self._context(scene.room, seed)
+        if len(scene.objects) >= self.config.max_objects:
+            return None
+        with torch.inference_mode():
+            obj, _ = self._insert_one(ctx, scene, allow_stop=False)
+        return obj
+
+    def suggest(self, scene: Scene, k: int = 5, seed: int = 0,
+                max_tries: int | None = None) -> list[PlacedObject]:
+        """Up to ``k`` distinct proposals for the next object (different category, or the
+        same category at least half a metre away or facing another way); nothing is
+        committed. STOP is not a proposal."""
+        ctx = self._context(scene.room, seed)
+        found: list[PlacedObject] = []
+        with torch.inference_mode():
+            for _ in range(max_tries or 6 * k):
+                if len(found) >= k:
+                    break
+                obj, _ = self._insert_one(ctx, scene, allow_stop=False)
+                if obj is not None and all(_distinct(obj, f) for f in found):
+                    found.append(obj)
+        return found
+
+    # ---- one insertion --------------------------------------------------------------------
+    def _insert_one(self, ctx: _Context, scene: Scene, allow_stop: bool = True
+                    ) -> tuple[PlacedObject | None, str]:
+        cfg, b, spec = self.config, ctx.bundle, ctx.spec
+        names = spec.names
+        t = time.perf_counter()
+        image = self._renderer(ctx.frame.resolution).render(scene, ctx.frame)
+        x = torch.from_numpy(image)[None].to(self.device)
+        if ctx.grid.resolution == ctx.frame.resolution:
+            small = image
+        else:
+            small = self._renderer(ctx.grid.resolution).render(scene, ctx.grid)
+        counts = torch.zeros(1, len(names), device=self.device)
+        for o in scene.objects:
+            if o.category in spec:
+                counts[0, spec.index(o.category)] += 1
+        ctx.timings['render'] += time.perf_counter() - t
+
+        t = time.perf_counter()
+        cat_logits = b.networks['category'](x, counts)[0]
+        ctx.timings['category'] += time.perf_counter() - t
+        t = time.perf_counter()
+        loc_logits = b.networks['location'](x)[0]
+        ctx.timings['location'] += time.perf_counter() - t
+
+        present = {o.category for o in scene.objects}
+        allowed = torch.ones(len(names) + 1, dtype=torch.bool, device=self.device)
+        for k, name in enumerate(names):
+            if CATEGORIES[name].tier == 'second' and not set(spec.supports(name)) & present:
+                allowed[k] = False
+        allowed[-1] = allow_stop
+        for _ in range(cfg.category_attempts):
+            if not bool(allowed.any()):
+                break
+            p = category_probabilities(cat_logits, allowed).double().cpu().numpy()
+            c = int(ctx.rng.choice(len(p), p=p / p.sum()))
+            if c == len(names):
+                return None, 'stop'
+            obj = self._place(ctx, scene, names[c], c, loc_logits, small)
+            if obj is not None:
+                return obj, 'placed'
+            allowed[c] = False
+        return None, 'nothing_fits'
+
+    def _mask(self, ctx: _Context, category: str, small: np.ndarray) -> np.ndarray:
+        """Where the centre of a new ``category`` object may go on the location grid."""
+        spec = ctx.spec
+        if CATEGORIES[category].tier == 'first':
+            # A centre inside other furniture or a door's clear zone is always rejected.
+            return ctx.floor_mask & ~ctx.door_mask & (small[OBJECT] < 0.5)
+        mask = np.zeros_like(ctx.floor_mask)
+        for parent in spec.supports(category):
+            mask |= small[FIRST_CATEGORY + spec.index(parent)] > 0.5
+        for name in spec.names:
+            if CATEGORIES[name].tier == 'second':
+                mask &= small[FIRST_CATEGORY + spec.index(name)] < 0.5
+        return mask & ctx.floor_mask
+
+    def _place(self, ctx: _Context, scene: Scene, category: str, c: int,
+               loc_logits: torch.Tensor, small: np.ndarray) -> PlacedObject | None:
+        cfg, b = self.config, ctx.bundle
+        t = time.perf_counter()
+        p = location_distribution(loc_logits, c, self._mask(ctx, category, small),
+                                  cfg.location_temperature)
+        ctx.timings['location'] += time.perf_counter() - t
+        if p is None:
+            return None
+        tried = 0
+        while tried < cfg.location_samples:
+            n = min(cfg.location_batch, cfg.location_samples - tried)
+            tried += n
+            t = time.perf_counter()
+            points = ctx.grid.pixel_to_world(sample_pixel(p, ctx.rng, n))
+            ctx.timings['location'] += time.perf_counter() - t
+            yaws = self._orientations(ctx, scene, c, points)
+            dims = self._dimensions(ctx, scene, c, points, yaws)
+            t = time.perf_counter()
+            for point, yaw, (depth, width) in zip(points, yaws, dims):
+                obj = self._fit_model(ctx, scene, category, point, yaw, width, depth)
+                if obj is not None:
+                    ctx.timings['insertion'] += time.perf_counter() - t
+                    return obj
+            ctx.timings['insertion'] += time.perf_counter() - t
+        return None
+
+    def _local_batch(self, ctx: _Context, scene: Scene, points, yaws) -> torch.Tensor:
+        r = self._renderer(ctx.frame.resolution)
+        images = [r.render(scene, local_frame(scene.room, pt, yaw, ctx.frame.resolution))
+                  for pt, yaw in zip(points, yaws)]
+        return torch.from_numpy(np.stack(images)).to(self.device)
+
+    def _orientations(self, ctx: _Context, scene: Scene, c: int, points) -> list[float]:
+        t = time.perf_counter()
+        x = self._local_batch(ctx, scene, points, [ctx.frame.yaw] * len(points))
+        ctx.timings['render'] += time.perf_counter() - t
+        t = time.perf_counter()
+        cats = torch.full((len(points),), c, dtype=torch.long, device=self.device)
+        theta = decode_angle(ctx.bundle.networks['orientation'].sample(x, cats, ctx.gen),
+                             ctx.gen)
+        snap = torch.sigmoid(ctx.bundle.networks['snap'](x, cats)) > self.config.snap_threshold
+        out = []
+        for th, s in zip(theta.tolist(), snap.tolist()):
+            th = snap_angle(th) if s else th
+            out.append(math.remainder(ctx.frame.yaw + th, 2 * math.pi))
+        ctx.timings['orientation'] += time.perf_counter() - t
+        return out
+
+    def _dimensions(self, ctx: _Context, scene: Scene, c: int, points, yaws
+                    ) -> list[tuple[float, float]]:
+        t = time.perf_counter()
+        x = self._local_batch(ctx, scene, points, yaws)
+        ctx.timings['render'] += time.perf_counter() - t
+        t = time.perf_counter()
+        cats = torch.full((len(points),), c, dtype=torch.long, device=self.device)
+        log_dims = ctx.bundle.networks['dimensions'].sample(x, cats, ctx.gen)
+        dims = torch.exp(log_dims).cpu().tolist()
+        ctx.timings['dimensions'] += time.perf_counter() - t
+        return [(d[0], d[1]) for d in dims]
+
+    # ---- catalog retrieval and rejection ----------------------------------------------------
+    def candidate_models(self, ctx: _Context, scene: Scene, category: str, width: float,
+                         depth: float) -> list[catalog.ModelVariant]:
+        """Catalog models from the best footprint fit; among those within ``fit_slack`` of
+        the best, the ones that co-occur most with the models in the room come first."""
+        ranked = catalog.ranked(category, width, depth)
+        best = catalog.footprint_distance(ranked[0], width, depth)
+        close = [v for v in ranked
+                 if catalog.footprint_distance(v, width, depth) <= best + self.config.fit_slack]
+        rest = ranked[len(close):]
+        b = ctx.bundle
+        index = {m: k for k, m in enumerate(b.models)}
+        present = [index[o.model_id] for o in scene.objects if o.model_id in index]
+        if present and len(close) > 1:
+            co = b.cooccurrence
+            diag = co.diagonal().clamp_min(1.0)
+
+            def affinity(v) -> float:
+                k = index.get(v.model_id)
+                if k is None:
+                    return 0.0
+                return float((co[k, present] / diag[present]).mean())
+            close = sorted(close, key=lambda v: -affinity(v))
+        return close + rest
+
+    def _fit_model(self, ctx: _Context, scene: Scene, category: str, point, yaw: float,
+                   width: float, depth: float) -> PlacedObject | None:
+        second = CATEGORIES[category].tier == 'second'
+        parent = self._parent(ctx, scene, category, point) if second else None
+        if second and parent is None:
+            return None
+        z = parent.top if parent is not None else 0.0
+        models = self.candidate_models(ctx, scene, category, width, depth)
+        for v in models[:self.config.models_per_location]:
+            obj = PlacedObject(scene.new_id(category), category, v.model_id,
+                               (float(point[0]), float(point[1]), float(z)), float(yaw),
+                               v.size, parent.id if parent is not None else None)
+            if self.fits(ctx, scene, obj, parent):
+                return obj
+        return None
+
+    @staticmethod
+    def _parent(ctx: _Context, scene: Scene, category: str, point) -> PlacedObject | None:
+        """The highest first-tier object of a supporting category under ``point``."""
+        supports = set(ctx.spec.supports(category))
+        pt = shapely.Point(float(point[0]), float(point[1]))
+        under = [o for o in scene.first_tier
+                 if o.category in supports and o.footprint().covers(pt)]
+        return max(under, key=lambda o: o.top) if under else None
+
+    def fits(self, ctx: _Context, scene: Scene, obj: PlacedObject,
+             parent: PlacedObject | None = None) -> bool:
+        """The insertion's rejection rules (see the module docstring)."""
+        fp = obj.footprint()
+        if not ctx.floor.covers(fp):
+            return False
+        if obj.support is not None:
+            if parent is None or fp.intersection(parent.footprint()).area < MIN_SUPPORT * fp.area:
+                return False
+            mine = shrunk_footprint(obj, COLLISION_TOLERANCE / 2)
+            return not any(mine.intersects(shrunk_footprint(s, COLLISION_TOLERANCE / 2))
+                           for s in scene.children_of(parent.id))
+        mine = shrunk_footprint(obj, COLLISION_TOLERANCE / 2)
+        if any(mine.intersects(shrunk_footprint(o, COLLISION_TOLERANCE / 2))
+               for o in scene.first_tier):
+            return False
+        inner = shrunk_footprint(obj, COLLISION_TOLERANCE)
+        if any(z.intersects(inner) for z in ctx.zones):
+            return False
+        # The robot path: required to stay open if it was open before this object.
+        if ctx.room.doors:
+            key = (id(scene), len(scene.objects))
+            before = ctx.connected.get(key)
+            if before is None:
+                before = ctx.connected[key] = doors_connected(scene)
+            if before and not doors_connected(Scene(scene.room, scene.objects + [obj])):
+                return False
+        return True
+
+
+def _distinct(a: PlacedObject, b: PlacedObject) -> bool:
+    if a.category != b.category:
+        return True
+    far = math.dist(a.position[:2], b.position[:2]) >= 0.5
+    turned = abs(math.remainder(a.yaw - b.yaw, 2 * math.pi)) > math.radians(30)
+    return far or turned

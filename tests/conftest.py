@@ -1,0 +1,36 @@
+"""Shared fixtures: a tiny trained bundle, so that synthesis can be tested end to end without
+depending on the quality of the shipped weights."""
+from pathlib import Path
+
+import pytest
+import torch
+
+from scene_synth_ros.models.config import (EncoderConfig, ModelConfig, ModuleSchedule,
+                                           PipelineConfig, TrainConfig)
+
+
+def tiny_config(steps: int = 4) -> PipelineConfig:
+    enc = EncoderConfig(blocks=(1, 1), widths=(8, 16))
+    sched = ModuleSchedule(steps, batch_size=8)
+    return PipelineConfig(
+        name='tiny', device='cpu',
+        model=ModelConfig(category_encoder=enc, location_encoder=enc, local_encoder=enc,
+                          location_decoder_widths=(16, 8, 8), hidden=32, latent=4,
+                          count_features=16, discriminator_widths=(8, 16)),
+        train=TrainConfig(train_rooms=30, val_rooms=8, val_examples=16, val_every=2,
+                          checkpoint_every=2, threads=1, category=sched, location=sched,
+                          orientation=sched, snap=sched, dimensions=sched))
+
+
+@pytest.fixture(scope='session')
+def tiny_weights(tmp_path_factory) -> Path:
+    """A weights directory with tiny, briefly trained bundles for bathroom and bedroom."""
+    from scene_synth_ros.models.train import train
+    root = tmp_path_factory.mktemp('tiny')
+    threads = torch.get_num_threads()
+    try:
+        train(['bathroom', 'bedroom'], tiny_config(), root / 'run', root / 'weights',
+              progress=False, echo=lambda s: None)
+    finally:
+        torch.set_num_threads(threads)
+    return root / 'weights'

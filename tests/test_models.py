@@ -1,0 +1,271 @@
+"""The networks, their training examples, configuration, training loop and weight bundles."""
+import math
+
+import numpy as np
+import pytest
+import torch
+
+from scene_synth_ros.categories import room_spec
+from scene_synth_ros.corpus.generate import generate_room
+from scene_synth_ros.models.bundle import (BundleError, build_networks, load_bundle,
+                                           save_bundle)
+from scene_synth_ros.models.config import PipelineConfig, resolve_device
+from scene_synth_ros.models.dimensions import box_sdf
+from scene_synth_ros.models.examples import (ExampleSource, insertion_order, placeable,
+                                             room_axis_yaw, room_frame, rotate_scene)
+from scene_synth_ros.models.location import location_distribution, sample_pixel
+from scene_synth_ros.models.orientation import decode_angle, is_snapped, snap_angle
+from scene_synth_ros.paths import config_dir
+from scene_synth_ros.render import COS, SIN, Frame, TopDownRenderer
+from scene_synth_ros.scene import Room, Scene
+
+from conftest import tiny_config
+
+
+@pytest.fixture(scope='module')
+def rooms():
+    return [generate_room('bedroom', 0, i) for i in range(6)] + \
+        [generate_room('living', 0, i) for i in range(4)]
+
+
+# ---- configuration ---------------------------------------------------------------------------
+def test_shipped_configs_parse_and_build():
+    compact = PipelineConfig.from_yaml(config_dir() / 'compact.yaml')
+    paper = PipelineConfig.from_yaml(config_dir() / 'paper.yaml')
+    assert (compact.model.resolution, paper.model.resolution) == (64, 256)
+    assert paper.model.category_encoder.widths == (64, 128, 256, 512)
+    assert paper.model.location_encoder.blocks == (3, 4, 6, 3)
+    # The paper's location network reads 256 px and answers on the 64 x 64 grid.
+    net = build_networks('bathroom', paper.model)['location'].eval()
+    with torch.no_grad():
+        out = net(torch.zeros(1, 28, 256, 256))
+    assert out.shape == (1, 21, 64, 64)
+
+
+def test_config_rejects_unknown_and_mistyped_settings(tmp_path):
+    bad = tmp_path / 'bad.yaml'
+    bad.write_text('model:\n  resolutoin: 64\n')
+    with pytest.raises(ValueError, match="config.model: unknown setting 'resolutoin'"):
+        PipelineConfig.from_yaml(bad)
+    bad.write_text('train:\n  category: {steps: many}\n')
+    with pytest.raises(ValueError, match='config.train.category.steps: expected a number'):
+        PipelineConfig.from_yaml(bad)
+    # Partial mappings keep the defaults of what they do not mention.
+    ok = tmp_path / 'ok.yaml'
+    ok.write_text('train:\n  location: {batch_size: 16}\n')
+    cfg = PipelineConfig.from_yaml(ok)
+    assert cfg.train.location.batch_size == 16 and cfg.train.location.steps == 1200
+    assert PipelineConfig.from_dict(cfg.to_dict()) == cfg
+
+
+def test_device_resolution():
+    assert resolve_device('cpu').type == 'cpu'
+    assert resolve_device('auto').type in ('cpu', 'cuda')
+    with pytest.raises(ValueError):
+        resolve_device('tpu')
+    if not torch.cuda.is_available():
+        with pytest.raises(ValueError, match='no CUDA device'):
+            resolve_device('cuda')
+
+
+# ---- training examples -------------------------------------------------------------------------
+def test_insertion_order_rules(rooms):
+    rng = np.random.default_rng(0)
+    for scene in rooms:
+        rank = {n: k for k, n in enumerate(room_spec(scene.room.room_type).importance_order())}
+        for by_importance in (True, False):
+            order = insertion_order(scene, rng, by_importance)
+            assert sorted(o.id for o in order) == sorted(o.id for o in scene.objects)
+            tiers = [o.support is not None for o in order]
+            assert tiers == sorted(tiers), 'a second-tier object came before a first-tier one'
+            seen = set()
+            for o in order:
+                assert o.support is None or o.support in seen, 'child before its parent'
+                seen.add(o.id)
+            if by_importance:
+                for tier in (False, True):
+                    ranks = [rank[o.category] for o, t in zip(order, tiers) if t == tier]
+                    assert ranks == sorted(ranks)
+    # Random order really is random: two draws of a room with many objects differ.
+    big = max(rooms, key=len)
+    draws = {tuple(o.id for o in insertion_order(big, np.random.default_rng(s), False))
+             for s in range(5)}
+    assert len(draws) > 1
+
+
+def test_placeable_needs_the_parent(rooms):
+    scene = next(s for s in rooms if s.second_tier)
+    child = scene.second_tier[0]
+    parent = scene.get(child.support)
+    others = [o for o in scene.first_tier if o is not parent]
+    assert child not in placeable([child], others)
+    assert child in placeable([child], others + [parent])
+    assert parent in placeable([parent], [])
+
+
+def test_location_target_marks_placeable_centroids(rooms):
+    src = ExampleSource('bedroom', rooms[:6], 64, 64, augment=False)
+    scene = next(s for s in rooms[:6] if s.second_tier)
+    child = scene.second_tier[0]
+    kept = [o for o in scene.first_tier if o.id != child.support][:1]
+    removed = [o for o in scene.objects if o not in kept]
+    frame = room_frame(scene.room, 64)
+    target = src.location_target(frame, placeable(removed, kept))
+    labels = set(np.unique(target)) - {0}
+    expect = {1 + src.index[o.category] for o in placeable(removed, kept)}
+    assert labels == expect
+    i, j = frame.world_to_pixel(child.position[:2])
+    parent_pixel = frame.world_to_pixel(scene.get(child.support).position[:2])
+    if tuple(parent_pixel) != (i, j):
+        assert target[i, j] != 1 + src.index[child.category]
+
+
+def test_rotation_augmentation_is_exact(rooms):
+    r = TopDownRenderer(64)
+    for scene in rooms[:3]:
+        back = rotate_scene(rotate_scene(scene, 3), 1)
+        assert back.room.polygon.equals_exact(scene.room.polygon, 1e-9)
+        for a, b in zip(back.objects, scene.objects):
+            assert np.allclose(a.position, b.position, atol=1e-9)
+            assert math.isclose(math.remainder(a.yaw - b.yaw, 2 * math.pi), 0, abs_tol=1e-9)
+        base = r.render(scene, room_frame(scene.room, 64))
+        turned = rotate_scene(scene, 1)
+        img = r.render(turned, room_frame(turned.room, 64))
+        # A quarter turn counter-clockwise of the world is a quarter turn of the image
+        # (rows grow with +y, columns with +x)...
+        rb = np.rot90(base, 1, axes=(2, 1))
+        fixed = [c for c in range(img.shape[0]) if c not in (SIN, COS)]
+        assert np.abs(img[fixed] - rb[fixed]).max() < 1e-5
+        # ...and the yaw channels turn with it: sin' = cos, cos' = -sin.
+        assert np.allclose(img[SIN], rb[COS], atol=1e-5)
+        assert np.allclose(img[COS], -rb[SIN], atol=1e-5)
+
+
+def test_example_batches_are_pure_functions_of_their_seed(rooms):
+    src = ExampleSource('bedroom', rooms[:6], 64, 64)
+    for module in ('category', 'location', 'orientation', 'dimensions'):
+        a, b = src.batch(module, [1, 2, 3], 4), src.batch(module, [1, 2, 3], 4)
+        c = src.batch(module, [1, 2, 4], 4)
+        assert all(torch.equal(a[k], b[k]) for k in a)
+        assert not all(torch.equal(a[k], c[k]) for k in a)
+    cat = src.batch('category', [0], 64)
+    assert cat['target'].max() <= src.num_categories
+    assert (cat['target'] == src.num_categories).any(), 'no STOP examples in 64'
+
+
+def test_room_frame_follows_a_rotated_room():
+    square = [(0, 0), (4, 0), (4, 3), (0, 3)]
+    a = math.radians(30)
+    rot = [(x * math.cos(a) - y * math.sin(a), x * math.sin(a) + y * math.cos(a))
+           for x, y in square]
+    room = Room('bedroom', rot)
+    assert room_axis_yaw(room) == pytest.approx(a)
+    frame = room_frame(room, 64)
+    r = TopDownRenderer(64)
+    upright = r.render(Scene(Room('bedroom', square)), room_frame(Room('bedroom', square), 64))
+    rotated = r.render(Scene(room), frame)
+    assert np.abs(upright[0] - rotated[0]).sum() <= 8   # same floor, up to edge pixels
+    assert room_frame(Room('bedroom', square), 64) == Frame.for_room(Room('bedroom', square), 64)
+
+
+# ---- location distribution, snapping, SDF ------------------------------------------------------
+def test_location_distribution_masks_and_tempers():
+    torch.manual_seed(0)
+    logits = torch.randn(5, 8, 8)
+    mask = np.zeros((8, 8), dtype=bool)
+    mask[2:6, 1:7] = True
+    p1 = location_distribution(logits, 2, mask, 1.0)
+    assert p1.sum() == pytest.approx(1.0) and (p1[~mask] == 0).all() and (p1[mask] > 0).all()
+    soft = torch.softmax(logits, 0)[3].numpy().astype(float)
+    expect = np.where(mask, soft, 0)
+    assert np.allclose(p1, expect / expect.sum())
+    p08 = location_distribution(logits, 2, mask, 0.8)
+    expect08 = np.where(mask, soft ** (1 / 0.8), 0)
+    assert np.allclose(p08, expect08 / expect08.sum())
+    # Lower temperature sharpens: the most likely pixel gains mass.
+    assert p08.max() > p1.max()
+    assert location_distribution(logits, 2, np.zeros((8, 8), bool), 0.8) is None
+    with pytest.raises(ValueError):
+        location_distribution(logits, 2, mask, 0.0)
+    pts = sample_pixel(p08, np.random.default_rng(0), 500)
+    rows, cols = np.floor(pts + 0.5).astype(int).T
+    assert mask[rows, cols].all()
+
+
+def test_snap_and_angle_decoding():
+    assert snap_angle(math.radians(88)) == pytest.approx(math.pi / 2)
+    assert snap_angle(math.radians(-179)) == pytest.approx(-math.pi)
+    assert snap_angle(math.radians(44)) == 0.0
+    theta = torch.tensor([0.0, math.pi / 2 + 0.01, math.radians(45), -math.pi + 0.001])
+    assert is_snapped(theta).tolist() == [True, True, False, True]
+    out = torch.tensor([[10.0, 10.0], [-10.0, -10.0], [0.0, 10.0]])
+    ang = decode_angle(out, torch.Generator().manual_seed(0))
+    assert ang[0].abs() < 0.1 and abs(abs(ang[1]) - math.pi) < 0.1
+    assert ang[2] == pytest.approx(math.pi / 2, abs=1e-3)
+
+
+def test_box_sdf_sign_and_gradient():
+    dims = torch.log(torch.tensor([[2.0, 1.0]])).requires_grad_()
+    sdf = box_sdf(dims, 64, 6.4)   # 0.1 m pixels
+    assert sdf.shape == (1, 1, 64, 64)
+    assert sdf[0, 0, 32, 32] < 0                 # centre: inside
+    assert sdf[0, 0, 32, 45] > 0                 # 1.25 m along the depth axis: outside
+    assert sdf[0, 0, 32, 41] < 0                 # 0.85 m: inside the 2 m depth
+    assert sdf[0, 0, 41, 32] > 0                 # 0.85 m across: outside the 1 m width
+    sdf.sum().backward()
+    assert dims.grad is not None and dims.grad.abs().sum() > 0
+
+
+# ---- training and bundles ----------------------------------------------------------------------
+def test_training_resumes_exactly(tmp_path):
+    from scene_synth_ros.models.train import ExampleSource as _ES, load_corpus, train_module
+    cfg = tiny_config(steps=4)
+    corpus = load_corpus('bathroom', cfg, workers=1)
+    src = _ES('bathroom', corpus.train, 64, 64)
+    val = _ES('bathroom', corpus.val, 64, 64)
+    results = {}
+    for label, stops in (('straight', [None]), ('resumed', [2, None])):
+        run = tmp_path / label
+        run.mkdir()
+        for module in ('category', 'dimensions'):
+            torch.manual_seed(0)
+            net = build_networks('bathroom', cfg.model)[module]
+            for until in stops:
+                if until is not None:
+                    assert train_module(module, net, src, val, cfg, 'cpu', run, lambda e: None,
+                                        False, until) is None
+                    torch.manual_seed(123)   # a fresh process: other initial weights
+                    net = build_networks('bathroom', cfg.model)[module]
+                else:
+                    train_module(module, net, src, val, cfg, 'cpu', run, lambda e: None, False)
+            results[(label, module)] = {k: v.clone() for k, v in net.state_dict().items()}
+    for module in ('category', 'dimensions'):
+        a, b = results[('straight', module)], results[('resumed', module)]
+        assert all(torch.allclose(a[k].float(), b[k].float(), atol=1e-6) for k in a), module
+
+
+def test_bundle_round_trip_and_errors(tiny_weights, tmp_path):
+    b = load_bundle(tiny_weights / 'bathroom.pt')
+    assert b.room_type == 'bathroom' and set(b.networks) == {
+        'category', 'location', 'orientation', 'snap', 'dimensions'}
+    assert not any(n.training for n in b.networks.values())
+    assert b.cooccurrence.shape == (len(b.models), len(b.models))
+    table = b.metrics['components']
+    assert set(table['category']) >= {'trained_top1', 'random_top1', 'trained_top5'}
+    # A pickle-free load: the file opens with weights_only=True.
+    torch.load(tiny_weights / 'bathroom.pt', weights_only=True)
+    save_bundle(b, tmp_path / 'copy.pt')
+    again = load_bundle(tmp_path / 'copy.pt')
+    for name, net in b.networks.items():
+        sa, sb = net.state_dict(), again.networks[name].state_dict()
+        assert all(torch.equal(sa[k], sb[k]) for k in sa)
+    with pytest.raises(BundleError, match='no such weights file'):
+        load_bundle(tmp_path / 'missing.pt')
+    broken = tmp_path / 'broken.pt'
+    broken.write_bytes((tiny_weights / 'bathroom.pt').read_bytes()[:5000])
+    with pytest.raises(BundleError, match='broken.pt: not a readable weights file'):
+        load_bundle(broken)
+    other = tmp_path / 'other.pt'
+    torch.save({'format': 1, 'room_type': 'bathroom', 'config': '{}'}, other)
+    with pytest.raises(BundleError, match='other.pt: weights do not match'):
+        load_bundle(other)
