@@ -30,9 +30,12 @@ test: install
 bench: install
 	$(PY) benchmarks/bench_render.py
 	$(PY) benchmarks/bench_corpus.py
+	$(PY) benchmarks/bench_synth.py
 
 gallery: install
 	$(VENV)/bin/scene-synth gallery --out docs/gallery/corpus.png
+	$(VENV)/bin/scene-synth gallery --source synthesized --out docs/gallery/synthesized.png
+	$(VENV)/bin/scene-synth gallery --source completions --out docs/gallery/completions.png
 
 clean:
 	rm -rf $(VENV) demo_out .pytest_cache build *.egg-info

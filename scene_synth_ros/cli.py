@@ -8,7 +8,7 @@ from pathlib import Path
 import sys
 import time
 
-from .categories import ROOM_TYPES, resolve_room_type, room_spec
+from .categories import ROOM_TYPES, resolve_room_type
 
 EXIT_BAD_INPUT = 2
 
@@ -131,37 +131,76 @@ def _corpus_rooms(seed: int, per_type: int):
 def cmd_gallery(args) -> int:
     from .plot import save_grid
     scenes, titles = [], []
-    for name, s in _corpus_rooms(args.seed, args.per_type):
-        scenes.append(s)
-        titles.append(f'{name.replace("_", " #")} (seed {args.seed})')
+    ncols = args.per_type
+    if args.source == 'corpus':
+        for name, s in _corpus_rooms(args.seed, args.per_type):
+            scenes.append(s)
+            titles.append(f'{name.replace("_", " #")} (seed {args.seed})')
+    elif args.source == 'synthesized':
+        from .corpus.generate import empty_room
+        synth = _synthesizer(args)
+        for rt in ROOM_TYPES:
+            for i in range(args.per_type):
+                room = empty_room(rt, SHELL_SEED, i)
+                scenes.append(_run_synthesis(synth.generate, room, args.seed + i).scene)
+                titles.append(f'{rt} #{i} (seed {args.seed + i})')
+    else:
+        from .paths import examples_dir
+        synth = _synthesizer(args)
+        partial = _load(args.partial or str(examples_dir() / 'partial_bedroom.json'))
+        scenes.append(partial)
+        titles.append(f'partial room ({len(partial)} objects)')
+        for i in range(args.per_type * 2 - 1):
+            scenes.append(_run_synthesis(synth.complete, partial, args.seed + i).scene)
+            titles.append(f'completion, seed {args.seed + i}')
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
-    save_grid(scenes, out, ncols=args.per_type, titles=titles)
+    save_grid(scenes, out, ncols=ncols, titles=titles)
     print(f'wrote {out}')
     return 0
 
 
 def cmd_demo(args) -> int:
-    """The main job at this stage: furnish a few procedural rooms of each type and show
-    them (JSON, one picture each, a contact sheet, a table in the terminal)."""
+    """The main job: furnish the example layouts, complete the example partial room and
+    furnish empty rooms of every type with the trained pipeline, then show them (JSON, one
+    picture each, a contact sheet, a table in the terminal)."""
+    from .corpus.generate import empty_room
     from .geometry import check_scene
+    from .paths import examples_dir
     from .plot import save_grid, save_png
+    from .scene import Scene
     from .schema import save_scene
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    synth = _synthesizer(args)
+    jobs = []
+    for f in ('bedroom_layout.json', 'lshaped_living_layout.json'):
+        jobs.append((Path(f).stem, 'generate', _load(str(examples_dir() / f))))
+    jobs.append(('partial_bedroom_completed', 'complete',
+                 _load(str(examples_dir() / 'partial_bedroom.json'))))
+    for rt in ROOM_TYPES:
+        for i in range(args.per_type):
+            jobs.append((f'{rt}_{i}', 'generate', Scene(empty_room(rt, SHELL_SEED, i), [])))
     scenes, titles = [], []
-    print(f'{"room":16s} {"floor":>10s} {"doors":>5s} {"windows":>7s} {"objects":>7s} '
-          f'{"valid":>5s}  categories')
-    for name, s in _corpus_rooms(args.seed, args.per_type):
+    print(f'{"room":26s} {"floor":>8s} {"kept":>4s} {"added":>5s} {"seconds":>7s} '
+          f'{"valid":>5s}  categories added')
+    for k, (name, mode, scene) in enumerate(jobs):
+        seed = args.seed + k
+        fn = synth.generate if mode == 'generate' else synth.complete
+        result = _run_synthesis(fn, scene, seed)
+        s = result.scene
         save_scene(s, out / f'{name}.json')
-        save_png(s, out / f'{name}.png', title=name)
+        save_png(s, out / f'{name}.png', title=f'{name} (seed {seed})')
         scenes.append(s)
-        titles.append(name)
-        cats = ', '.join(f'{n}x {c}' if n > 1 else c for c, n in s.category_counts().items())
-        print(f'{name:16s} {s.room.area:8.1f}m2 {len(s.room.doors):5d} '
-              f'{len(s.room.windows):7d} {len(s):7d} '
-              f'{"yes" if check_scene(s).ok else "NO":>5s}  {cats}')
-    save_grid(scenes, out / 'gallery.png', ncols=args.per_type, titles=titles)
+        titles.append(f'{name} (seed {seed})')
+        added: dict[str, int] = {}
+        for o in result.added:
+            added[o.category] = added.get(o.category, 0) + 1
+        cats = ', '.join(f'{n}x {c}' if n > 1 else c for c, n in added.items())
+        kept = len(s) - len(result.added)
+        print(f'{name:26s} {s.room.area:6.1f}m2 {kept:4d} {len(result.added):5d} '
+              f'{result.seconds:7.2f} {"yes" if check_scene(s).ok else "NO":>5s}  {cats}')
+    save_grid(scenes, out / 'gallery.png', ncols=3, titles=titles)
     print(f'\nwrote {len(scenes)} scenes (JSON + PNG) and {out / "gallery.png"}')
     return 0
 
@@ -233,16 +272,23 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument('--title')
     c.set_defaults(func=cmd_render)
 
-    c = sub.add_parser('gallery', help='a grid of corpus rooms, per-type rows')
+    c = sub.add_parser('gallery', help='a grid of corpus rooms, synthesized rooms (one row '
+                       'per room type) or completions of one partial room')
+    c.add_argument('--source', choices=('corpus', 'synthesized', 'completions'),
+                   default='corpus')
     c.add_argument('--out', default='docs/gallery/corpus.png')
-    c.add_argument('--per-type', type=int, default=3)
+    c.add_argument('--per-type', type=int, default=3, help='columns of the grid')
     c.add_argument('--seed', type=int, default=0)
+    c.add_argument('--partial', help='completions: the partial room (default: '
+                   'examples/partial_bedroom.json)')
+    c.add_argument('--weights-dir', help="trained bundles (default: the package's weights/)")
     c.set_defaults(func=cmd_gallery)
 
-    c = sub.add_parser('demo', help='furnish example rooms and show them')
+    c = sub.add_parser('demo', help='furnish example rooms with the pipeline and show them')
     c.add_argument('--out', default='demo_out')
-    c.add_argument('--per-type', type=int, default=2)
+    c.add_argument('--per-type', type=int, default=1, help='empty rooms per room type')
     c.add_argument('--seed', type=int, default=0)
+    c.add_argument('--weights-dir', help="trained bundles (default: the package's weights/)")
     c.set_defaults(func=cmd_demo)
 
     c = sub.add_parser('catalog', help='list, export or preview the 3D model catalog')
@@ -284,6 +330,12 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument('--quiet', action='store_true', help='no progress bars')
     c.set_defaults(func=cmd_train)
 
+    c = sub.add_parser('components', help="the paper's component table of trained weights, "
+                       'beside randomly initialised networks (held-out corpus rooms)')
+    c.add_argument('--room-type', default='all')
+    c.add_argument('--weights-dir', help="trained bundles (default: the package's weights/)")
+    c.set_defaults(func=cmd_components)
+
     c = sub.add_parser('validate', help='check scene JSON files: schema and physics')
     c.add_argument('files', nargs='+')
     c.set_defaults(func=cmd_validate)
@@ -291,6 +343,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 # ---- synthesis ---------------------------------------------------------------------------
+SHELL_SEED = 1   # galleries furnish the shells of corpus rooms that training never saw
+
 def _synthesizer(args):
     from .synth import SynthConfig, Synthesizer, SynthesisError
     cfg = SynthConfig()
@@ -451,6 +505,24 @@ def cmd_train(args) -> int:
     print(f'training {", ".join(_room_types(args.room_type))} with the {cfg.name} '
           f'configuration; checkpoints and logs in {run_root}, weights to {out}')
     train(_room_types(args.room_type), cfg, run_root, out, progress=not args.quiet)
+    return 0
+
+
+def cmd_components(args) -> int:
+    from .models.bundle import BundleError, bundle_path, load_bundle
+    from .models.train import format_components
+    from .paths import weights_dir
+    tables = {}
+    for rt in _room_types(args.room_type):
+        path = bundle_path(args.weights_dir or weights_dir(), rt)
+        try:
+            b = load_bundle(path)
+        except BundleError as e:
+            raise UserError(str(e)) from None
+        if 'components' not in b.metrics:
+            raise UserError(f'{path}: the bundle carries no component metrics')
+        tables[rt] = b.metrics['components']
+    print(format_components(tables))
     return 0
 
 

@@ -17,7 +17,7 @@ reproducible from its seed.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 import math
 from pathlib import Path
 import time
@@ -30,7 +30,7 @@ from . import catalog
 from .categories import CATEGORIES, resolve_room_type, room_spec
 from .geometry import (COLLISION_TOLERANCE, FLOOR_TOLERANCE, MIN_SUPPORT, door_zone,
                        doors_connected, shrunk_footprint)
-from .models.bundle import Bundle, BundleError, bundle_path, load_bundle
+from .models.bundle import Bundle, bundle_path, load_bundle
 from .models.config import resolve_device
 from .models.category import category_probabilities
 from .models.examples import local_frame, room_frame
@@ -264,7 +264,7 @@ class Synthesizer:
 
     def _place(self, ctx: _Context, scene: Scene, category: str, c: int,
                loc_logits: torch.Tensor, small: np.ndarray) -> PlacedObject | None:
-        cfg, b = self.config, ctx.bundle
+        cfg = self.config
         t = time.perf_counter()
         p = location_distribution(loc_logits, c, self._mask(ctx, category, small),
                                   cfg.location_temperature)

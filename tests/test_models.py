@@ -1,4 +1,5 @@
 """The networks, their training examples, configuration, training loop and weight bundles."""
+from dataclasses import replace
 import math
 
 import numpy as np
@@ -54,7 +55,8 @@ def test_config_rejects_unknown_and_mistyped_settings(tmp_path):
     ok = tmp_path / 'ok.yaml'
     ok.write_text('train:\n  location: {batch_size: 16}\n')
     cfg = PipelineConfig.from_yaml(ok)
-    assert cfg.train.location.batch_size == 16 and cfg.train.location.steps == 1200
+    assert cfg.train.location.batch_size == 16
+    assert cfg.train.location.steps == PipelineConfig().train.location.steps
     assert PipelineConfig.from_dict(cfg.to_dict()) == cfg
 
 
@@ -118,6 +120,41 @@ def test_location_target_marks_placeable_centroids(rooms):
     parent_pixel = frame.world_to_pixel(scene.get(child.support).position[:2])
     if tuple(parent_pixel) != (i, j):
         assert target[i, j] != 1 + src.index[child.category]
+
+
+def test_location_target_radius(rooms):
+    scene = rooms[0]
+    frame = room_frame(scene.room, 64)
+    obj = scene.first_tier[0]
+    i, j = frame.world_to_pixel(obj.position[:2])
+    for r in (0, 1, 2):
+        src = ExampleSource('bedroom', rooms[:6], 64, 64, augment=False, target_radius=r)
+        target = src.location_target(frame, [obj])
+        assert (target > 0).sum() == (2 * r + 1) ** 2
+        assert (target[i - r:i + r + 1, j - r:j + r + 1] == 1 + src.index[obj.category]).all()
+
+
+def test_network_shapes_and_seeded_initialisation():
+    cfg = PipelineConfig.from_yaml(config_dir() / 'compact.yaml').model
+    a = build_networks('bedroom', cfg, seed=3)
+    b = build_networks('bedroom', cfg, seed=3)
+    for name in a:
+        sa, sb = a[name].state_dict(), b[name].state_dict()
+        assert all(torch.equal(sa[k], sb[k]) for k in sa)
+    # One module's architecture does not change another's initial weights.
+    other = build_networks('bedroom', replace(cfg, location_skips=False), seed=3)
+    assert torch.equal(other['orientation'].head.weight, a['orientation'].head.weight)
+    x = torch.zeros(2, 46, 64, 64)
+    with torch.no_grad():
+        for net in a.values():
+            net.eval()
+        assert a['category'](x, torch.zeros(2, 38)).shape == (2, 39)
+        assert a['location'](x).shape == (2, 39, 64, 64)
+        assert other['location'].eval()(x).shape == (2, 39, 64, 64)
+        cat = torch.tensor([0, 5])
+        assert a['orientation'].sample(x, cat).shape == (2, 2)
+        assert a['snap'](x, cat).shape == (2,)
+        assert a['dimensions'](x, cat, torch.zeros(2, 2))[0].shape == (2, 2)
 
 
 def test_rotation_augmentation_is_exact(rooms):

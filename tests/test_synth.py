@@ -1,9 +1,7 @@
 """The synthesizer: rejection rules, masks, snapping, the three modes, determinism, and the
 shipped weights."""
-from dataclasses import replace
 import math
 
-import numpy as np
 import pytest
 import torch
 

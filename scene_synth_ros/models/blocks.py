@@ -52,9 +52,25 @@ class ResNetEncoder(nn.Module):
             cin = w
         self.stages = nn.Sequential(*stages)
         self.out_channels = cin
+        self.skip_channels = [cfg.widths[0]] + [w for w in cfg.widths[:len(cfg.blocks)]]
 
     def forward(self, x):
         return self.stages(self.stem(x))
+
+    def features(self, x) -> list:
+        """The stem's output before pooling and every stage's output, finest first (for
+        skip connections); the last one is what ``forward`` returns."""
+        stem = list(self.stem)
+        pool = stem.pop() if isinstance(stem[-1], nn.MaxPool2d) else None
+        for layer in stem:
+            x = layer(x)
+        out = [x]
+        if pool is not None:
+            x = pool(x)
+        for stage in self.stages:
+            x = stage(x)
+            out.append(x)
+        return out
 
 
 class PooledEncoder(nn.Module):
@@ -71,15 +87,18 @@ class PooledEncoder(nn.Module):
 
 class UpBlock(nn.Module):
     """Nearest-neighbour 2x upsampling and a 3x3 convolution (the paper's up-convolution,
-    which avoids the checkerboard artefacts of transposed convolutions)."""
+    which avoids the checkerboard artefacts of transposed convolutions), optionally over the
+    upsampled map joined with a skip feature map of the new resolution."""
 
-    def __init__(self, cin: int, cout: int):
+    def __init__(self, cin: int, cout: int, skip: int = 0):
         super().__init__()
-        self.conv = nn.Conv2d(cin, cout, 3, 1, 1, bias=False)
+        self.conv = nn.Conv2d(cin + skip, cout, 3, 1, 1, bias=False)
         self.bn = nn.BatchNorm2d(cout)
 
-    def forward(self, x):
+    def forward(self, x, skip=None):
         x = nn.functional.interpolate(x, scale_factor=2, mode='nearest')
+        if skip is not None:
+            x = torch.cat([x, skip], dim=1)
         return torch.relu(self.bn(self.conv(x)))
 
 

@@ -31,13 +31,22 @@ class BundleError(Exception):
     """A weights file that is missing, unreadable or does not match the code."""
 
 
-def build_networks(room_type: str, cfg: ModelConfig) -> dict[str, nn.Module]:
-    """Freshly initialised networks of every module for ``room_type``."""
+def build_networks(room_type: str, cfg: ModelConfig, seed: int | None = None
+                   ) -> dict[str, nn.Module]:
+    """Freshly initialised networks of every module for ``room_type``. With ``seed``, each
+    network's initial weights come from its own seed (``seed + k`` for the k-th module), so
+    changing one module's architecture leaves the others' initialisation alone."""
     rt = resolve_room_type(room_type)
     ch, c = num_channels(rt), len(room_spec(rt).names)
-    return {'category': CategoryModel(ch, c, cfg), 'location': LocationModel(ch, c, cfg),
-            'orientation': OrientationModel(ch, c, cfg), 'snap': SnapModel(ch, c, cfg),
-            'dimensions': DimensionsModel(ch, c, cfg)}
+    kinds = {'category': CategoryModel, 'location': LocationModel,
+             'orientation': OrientationModel, 'snap': SnapModel,
+             'dimensions': DimensionsModel}
+    nets = {}
+    for k, name in enumerate(NETWORKS):
+        if seed is not None:
+            torch.manual_seed(seed + k)
+        nets[name] = kinds[name](ch, c, cfg)
+    return nets
 
 
 @dataclass

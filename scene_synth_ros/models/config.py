@@ -36,6 +36,10 @@ class ModelConfig:
         default_factory=lambda: EncoderConfig(blocks=(3, 4, 6, 3)))
     location_decoder_widths: tuple[int, ...] = (64, 32, 32, 16, 16)
     location_dropout: float = 0.1
+    # U-Net-style skips from the encoder into the decoder. The paper decodes from the 8 x 8
+    # bottleneck of a 256 px input; a compact 64 px encoder ends at 2 x 2, from which alone
+    # the decoder cannot place anything finer than a quarter of the room.
+    location_skips: bool = True
     local_encoder: EncoderConfig = field(
         default_factory=lambda: EncoderConfig(blocks=(1, 1, 1, 1)))
     count_features: int = 64       # width of the bag-of-categories MLP
@@ -67,10 +71,11 @@ class TrainConfig:
     threads: int = 0                       # torch threads; 0 = all cores
     category: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1500))
     location: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1200, 32))
-    orientation: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(800))
+    orientation: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(2400))
     snap: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(400))
-    dimensions: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(800))
+    dimensions: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(600))
     empty_weight: float = 0.1              # location: weight of empty pixels vs centroids
+    location_target_radius: int = 1        # location: centroid marked on (2r+1)^2 pixels
     kl_weight: float = 1.0                 # CVAE: weight of the KL term
     adversarial_weight: float = 0.05       # dimensions: weight of the discriminator's loss
 

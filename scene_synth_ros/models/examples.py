@@ -121,7 +121,7 @@ class ExampleSource:
     one type. A batch is a pure function of its seed, so a resumed run sees the same data."""
 
     def __init__(self, room_type: str, scenes: list[Scene], resolution: int,
-                 location_resolution: int, augment: bool = True):
+                 location_resolution: int, augment: bool = True, target_radius: int = 0):
         self.room_type = resolve_room_type(room_type)
         self.spec = room_spec(self.room_type)
         self.index = {n: k for k, n in enumerate(self.spec.names)}
@@ -129,6 +129,7 @@ class ExampleSource:
         self.resolution = resolution
         self.location_resolution = location_resolution
         self.augment = augment
+        self.target_radius = target_radius
         self.renderer = TopDownRenderer(resolution, cache_size=64)
 
     @property
@@ -171,13 +172,16 @@ class ExampleSource:
         return image, target
 
     def location_target(self, frame: Frame, objects) -> np.ndarray:
-        n = self.location_resolution
+        """Per-pixel labels on the location grid: 0, or 1 + the category of an object whose
+        centroid is within ``target_radius`` pixels (0: the centroid's pixel alone, as in the
+        paper; larger radii give a sparse target more positive pixels to learn from)."""
+        n, r = self.location_resolution, self.target_radius
         out = np.zeros((n, n), dtype=np.int64)
         grid = Frame(frame.centre, frame.yaw, frame.extent, n)
         for o in objects:
             i, j = grid.world_to_pixel(o.position[:2])
             if 0 <= i < n and 0 <= j < n:
-                out[i, j] = 1 + self.index[o.category]
+                out[max(i - r, 0):i + r + 1, max(j - r, 0):j + r + 1] = 1 + self.index[o.category]
         return out
 
     def _target_object(self, rng):

@@ -31,18 +31,41 @@ class LocationModel(nn.Module):
                              'encoder output size')
         widths = list(cfg.location_decoder_widths[:ups])
         widths += [widths[-1] if widths else self.encoder.out_channels] * (ups - len(widths))
-        layers, cin = [], self.encoder.out_channels
+        # Skip features by resolution (finest first); the bottleneck itself is not a skip.
+        self.skips = cfg.location_skips
+        sizes = self._feature_sizes(cfg.resolution)
+        self.skip_at: list[int | None] = []
+        layers, cin, size = [], self.encoder.out_channels, bottleneck
         for w in widths:
-            layers.append(UpBlock(cin, w))
+            size *= 2
+            k = sizes.index(size) if self.skips and size in sizes[:-1] else None
+            self.skip_at.append(k)
+            layers.append(UpBlock(cin, w, self.encoder.skip_channels[k] if k is not None else 0))
             cin = w
-        self.decoder = nn.Sequential(*layers)
+        self.decoder = nn.ModuleList(layers)
         p = cfg.location_dropout
         self.drop_in, self.drop_mid, self.drop_out = nn.Dropout(p), nn.Dropout(p), nn.Dropout(p)
         self.final = nn.Conv2d(cin, num_categories + 1, 1)
 
+    def _feature_sizes(self, resolution: int) -> list[int]:
+        with torch.no_grad():
+            was = self.encoder.training
+            self.encoder.eval()
+            feats = self.encoder.features(torch.zeros(1, self.encoder.stem[0].in_channels,
+                                                      resolution, resolution))
+            self.encoder.train(was)
+        return [f.shape[-1] for f in feats]
+
     def forward(self, image: torch.Tensor) -> torch.Tensor:
-        x = self.drop_mid(self.encoder(self.drop_in(image)))
-        return self.final(self.drop_out(self.decoder(x)))
+        image = self.drop_in(image)
+        if self.skips:
+            feats = self.encoder.features(image)
+            x = self.drop_mid(feats[-1])
+        else:
+            feats, x = [], self.drop_mid(self.encoder(image))
+        for layer, k in zip(self.decoder, self.skip_at):
+            x = layer(x, feats[k] if k is not None else None)
+        return self.final(self.drop_out(x))
 
 
 def location_loss(logits: torch.Tensor, target: torch.Tensor, empty_weight: float

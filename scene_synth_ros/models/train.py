@@ -17,9 +17,8 @@ import numpy as np
 import torch
 from torch import nn
 
-from ..categories import ROOM_TYPES, resolve_room_type
 from ..catalog import variants
-from ..categories import room_spec
+from ..categories import ROOM_TYPES, resolve_room_type, room_spec
 from ..corpus.generate import generate_corpus
 from ..scene import Scene
 from .bundle import NETWORKS, Bundle, build_networks, save_bundle
@@ -142,8 +141,8 @@ def train_module(module: str, net: nn.Module, source: ExampleSource, val: Exampl
     opt = torch.optim.Adam(net.parameters(), lr=sched.lr, weight_decay=sched.weight_decay)
     disc = disc_opt = None
     if module == 'dimensions' and t.adversarial_weight > 0:
-        disc = Discriminator(net.encoder.body.stem[0].in_channels, net.head.weight.shape[0],
-                             cfg.model).to(device)
+        disc = Discriminator(source.renderer.num_channels(source.room_type),
+                             source.num_categories, cfg.model).to(device)
         disc_opt = torch.optim.Adam(disc.parameters(), lr=sched.lr, betas=(0.5, 0.999))
     ckpt = run_dir / f'{module}.ckpt'
     start = 0
@@ -224,8 +223,7 @@ def component_table(nets: dict[str, nn.Module], val: ExampleSource, cfg: Pipelin
                     room_type: str) -> dict[str, dict[str, float]]:
     """The paper's component metrics on held-out rooms, for the given networks and for
     freshly initialised ones of the same shape (seeded)."""
-    torch.manual_seed(cfg.train.seed)
-    fresh = build_networks(room_type, cfg.model)
+    fresh = build_networks(room_type, cfg.model, seed=cfg.train.seed + 1000)
     out: dict[str, dict[str, float]] = {}
     for name in NETWORKS:
         for label, net in (('trained', nets[name]), ('random', fresh[name])):
@@ -256,10 +254,11 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
          f'(corpus seed {t.corpus_seed})')
     corpus = load_corpus(rt, cfg, workers=t.threads or None)
     m = cfg.model
-    source = ExampleSource(rt, corpus.train, m.resolution, m.location_resolution)
-    val = ExampleSource(rt, corpus.val, m.resolution, m.location_resolution)
-    torch.manual_seed(t.seed)
-    nets = build_networks(rt, m)
+    source = ExampleSource(rt, corpus.train, m.resolution, m.location_resolution,
+                           target_radius=t.location_target_radius)
+    val = ExampleSource(rt, corpus.val, m.resolution, m.location_resolution,
+                        target_radius=t.location_target_radius)
+    nets = build_networks(rt, m, seed=t.seed)
     final: dict[str, dict[str, float]] = {}
     for name in NETWORKS:
         final[name] = train_module(name, nets[name], source, val, cfg, device, run_dir, log,
