@@ -23,13 +23,14 @@ setup(
         ('share/' + PACKAGE + '/msg_schemas', _files('msg_schemas/*.json')),
         ('share/' + PACKAGE + '/config', _files('config/*.yaml')),
         ('share/' + PACKAGE + '/examples', _files('examples/*.json')),
-        ('share/' + PACKAGE + '/weights', _files(PACKAGE + '/weights/*')),
     ],
-    package_data={PACKAGE: ['weights/*', 'corpus/calibration.json']},
+    # The weights live inside the Python package (found from __file__ wherever it is
+    # installed), so they are not copied to share/ as well.
+    package_data={PACKAGE: ['weights/*.pt', 'corpus/calibration.json']},
     # Python dependencies are pinned once, in requirements.txt; colcon users get the
     # ROS ones from package.xml.
     install_requires=['setuptools'],
-    zip_safe=True,
+    zip_safe=False,   # the weights are read as files
     maintainer='scene_synth_ros developers',
     maintainer_email='dev@scene-synth-ros.invalid',
     description='Indoor scene synthesis (Ritchie et al., CVPR 2019) as a ROS 2 node.',

@@ -225,9 +225,7 @@ class Synthesizer:
         t = time.perf_counter()
         cat_logits = b.networks['category'](x, counts)[0]
         ctx.timings['category'] += time.perf_counter() - t
-        t = time.perf_counter()
-        loc_logits = b.networks['location'](x)[0]
-        ctx.timings['location'] += time.perf_counter() - t
+        loc_logits = None      # computed on the first category that is not STOP
 
         present = {o.category for o in scene.objects}
         allowed = torch.ones(len(names) + 1, dtype=torch.bool, device=self.device)
@@ -242,6 +240,10 @@ class Synthesizer:
             c = int(ctx.rng.choice(len(p), p=p / p.sum()))
             if c == len(names):
                 return None, 'stop'
+            if loc_logits is None:
+                t = time.perf_counter()
+                loc_logits = b.networks['location'](x)[0]
+                ctx.timings['location'] += time.perf_counter() - t
             obj = self._place(ctx, scene, names[c], c, loc_logits, small)
             if obj is not None:
                 return obj, 'placed'

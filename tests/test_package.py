@@ -47,6 +47,10 @@ def test_wheel_installs_the_ament_data_files(tmp_path):
         assert f'{data}share/scene_synth_ros/msg_schemas/{schema}.schema.json' in names
     assert any(n.startswith(data + 'share/scene_synth_ros/examples/') for n in names)
     assert 'scene_synth_ros/corpus/calibration.json' in names
+    for rt in ('bedroom', 'living', 'office', 'bathroom'):
+        assert f'scene_synth_ros/weights/{rt}.pt' in names
+    for cfg in ('compact', 'paper'):
+        assert f'{data}share/scene_synth_ros/config/{cfg}.yaml' in names
     entry_points = zipfile.ZipFile(wheel).read(
         'scene_synth_ros-0.1.0.dist-info/entry_points.txt').decode()
     assert 'scene-synth = scene_synth_ros.cli:main' in entry_points

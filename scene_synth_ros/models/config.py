@@ -69,7 +69,7 @@ class TrainConfig:
     val_every: int = 250
     checkpoint_every: int = 100
     threads: int = 0                       # torch threads; 0 = all cores
-    category: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1500))
+    category: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(4000))
     location: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1200, 32))
     orientation: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(2400))
     snap: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(400))

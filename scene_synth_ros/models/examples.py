@@ -125,7 +125,10 @@ class ExampleSource:
         self.room_type = resolve_room_type(room_type)
         self.spec = room_spec(self.room_type)
         self.index = {n: k for k, n in enumerate(self.spec.names)}
-        self.scenes = scenes
+        # An empty room teaches only STOP, and has no object to orient or size.
+        self.scenes = [s for s in scenes if s.objects]
+        if not self.scenes:
+            raise ValueError(f'no furnished {self.room_type} among the {len(scenes)} rooms given')
         self.resolution = resolution
         self.location_resolution = location_resolution
         self.augment = augment
