@@ -327,6 +327,9 @@ def build_parser() -> argparse.ArgumentParser:
                    'an interrupted run started again with the same directory resumes')
     c.add_argument('--weights-dir', help='where the trained bundles go (default: the '
                    "package's weights/)")
+    c.add_argument('--modules', help='comma-separated subset of category, location, '
+                   'orientation, snap, dimensions to train (no export); several processes '
+                   'may train different modules of one room type at once')
     c.add_argument('--quiet', action='store_true', help='no progress bars')
     c.set_defaults(func=cmd_train)
 
@@ -504,7 +507,12 @@ def cmd_train(args) -> int:
     out = Path(args.weights_dir) if args.weights_dir else weights_dir()
     print(f'training {", ".join(_room_types(args.room_type))} with the {cfg.name} '
           f'configuration; checkpoints and logs in {run_root}, weights to {out}')
-    train(_room_types(args.room_type), cfg, run_root, out, progress=not args.quiet)
+    modules = tuple(m.strip() for m in args.modules.split(',')) if args.modules else None
+    try:
+        train(_room_types(args.room_type), cfg, run_root, out, progress=not args.quiet,
+              **({'modules': modules} if modules else {}))
+    except ValueError as e:
+        raise UserError(str(e)) from None
     return 0
 
 

@@ -79,6 +79,14 @@ train:
   snap: {steps: 2, batch_size: 4}
   dimensions: {steps: 2, batch_size: 4}
 ''')
+    # Some modules alone: trained, nothing exported; then all of them: the bundle.
+    proc = run('train', '--room-type', 'bathroom', '--config', cfg, '--run-dir',
+               tmp_path / 'run', '--weights-dir', tmp_path / 'w', '--quiet',
+               '--modules', 'location,snap')
+    assert 'run again over all modules to export' in proc.stdout
+    assert sorted(p.name for p in (tmp_path / 'run' / 'bathroom').glob('*.ckpt')) == \
+        ['location.ckpt', 'snap.ckpt']
+    assert not (tmp_path / 'w').exists()
     proc = run('train', '--room-type', 'bathroom', '--config', cfg, '--run-dir',
                tmp_path / 'run', '--weights-dir', tmp_path / 'w', '--quiet')
     assert 'category top-1 accuracy' in proc.stdout
@@ -92,6 +100,8 @@ train:
     bad.write_text('model: {resolution: [64}\n')
     proc = run('train', '--config', bad, ok=False)
     assert proc.returncode == 2 and 'not valid YAML' in proc.stderr
+    proc = run('train', '--config', cfg, '--modules', 'colour', ok=False)
+    assert proc.returncode == 2 and "unknown module 'colour'" in proc.stderr
     proc = run('train', '--config', tmp_path / 'none.yaml', ok=False)
     assert proc.returncode == 2 and 'no such configuration file' in proc.stderr
 

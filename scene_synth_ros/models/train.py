@@ -235,7 +235,12 @@ def component_table(nets: dict[str, nn.Module], val: ExampleSource, cfg: Pipelin
 
 
 def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights_dir: Path,
-                    progress: bool = True, echo: Callable[[str], None] = print) -> Bundle:
+                    progress: bool = True, echo: Callable[[str], None] = print,
+                    modules: tuple[str, ...] = NETWORKS) -> Bundle | None:
+    """Train (or resume) the modules of ``room_type`` and export the bundle. With a subset
+    of ``modules`` only those are trained and nothing is exported: several processes can
+    then train different modules of one room type at once in the same run directory, and a
+    final run over all modules (each resuming at its end) exports the bundle."""
     rt = resolve_room_type(room_type)
     device = resolve_device(cfg.device)
     t = cfg.train
@@ -261,9 +266,15 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
     nets = build_networks(rt, m, seed=t.seed)
     final: dict[str, dict[str, float]] = {}
     for name in NETWORKS:
+        if name not in modules:
+            continue
         final[name] = train_module(name, nets[name], source, val, cfg, device, run_dir, log,
                                    progress)
         echo(f'{rt}/{name}: ' + ', '.join(f'{k} {v:.4f}' for k, v in final[name].items()))
+    if set(modules) != set(NETWORKS):
+        log_file.close()
+        echo(f'{rt}: trained {", ".join(modules)}; run again over all modules to export')
+        return None
     table = component_table(nets, val, cfg, device, rt)
     models, co = model_cooccurrence(rt, corpus.train)
     bundle = Bundle(rt, cfg, nets, co, models, {'components': table})
@@ -296,10 +307,14 @@ def format_components(tables: dict[str, dict[str, dict[str, float]]]) -> str:
 
 
 def train(room_types: list[str], cfg: PipelineConfig, run_root: Path, weights_dir: Path,
-          progress: bool = True, echo: Callable[[str], None] = print) -> dict[str, Bundle]:
+          progress: bool = True, echo: Callable[[str], None] = print,
+          modules: tuple[str, ...] = NETWORKS) -> dict[str, Bundle | None]:
+    unknown = sorted(set(modules) - set(NETWORKS))
+    if unknown:
+        raise ValueError(f'unknown module {unknown[0]!r}; expected some of {", ".join(NETWORKS)}')
     out = {}
     for rt in room_types:
         if rt not in ROOM_TYPES:
             raise ValueError(f'unknown room type {rt!r}')
-        out[rt] = train_room_type(rt, cfg, run_root, weights_dir, progress, echo)
+        out[rt] = train_room_type(rt, cfg, run_root, weights_dir, progress, echo, modules)
     return out
