@@ -337,6 +337,7 @@ def build_parser() -> argparse.ArgumentParser:
                        'beside randomly initialised networks (held-out corpus rooms)')
     c.add_argument('--room-type', default='all')
     c.add_argument('--weights-dir', help="trained bundles (default: the package's weights/)")
+    c.add_argument('--markdown', action='store_true', help='a Markdown table')
     c.set_defaults(func=cmd_components)
 
     c = sub.add_parser('validate', help='check scene JSON files: schema and physics')
@@ -530,7 +531,7 @@ def cmd_components(args) -> int:
         if 'components' not in b.metrics:
             raise UserError(f'{path}: the bundle carries no component metrics')
         tables[rt] = b.metrics['components']
-    print(format_components(tables))
+    print(format_components(tables, markdown=args.markdown))
     return 0
 
 

@@ -289,17 +289,29 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
     return bundle
 
 
-def format_components(tables: dict[str, dict[str, dict[str, float]]]) -> str:
+COMPONENT_ROWS = [('category top-1 accuracy', 'category', 'top1'),
+                  ('category top-5 accuracy', 'category', 'top5'),
+                  ('location cross-entropy', 'location', 'loss'),
+                  ('orientation neg. ELBO', 'orientation', 'neg_elbo'),
+                  ('snap accuracy', 'snap', 'accuracy'),
+                  ('dimensions neg. ELBO', 'dimensions', 'neg_elbo')]
+
+
+def format_components(tables: dict[str, dict[str, dict[str, float]]],
+                      markdown: bool = False) -> str:
     """The paper's component table, trained beside random initialisation."""
-    rows = [('category top-1 accuracy', 'category', 'top1', True),
-            ('category top-5 accuracy', 'category', 'top5', True),
-            ('location cross-entropy', 'location', 'loss', False),
-            ('orientation neg. ELBO', 'orientation', 'neg_elbo', False),
-            ('snap accuracy', 'snap', 'accuracy', True),
-            ('dimensions neg. ELBO', 'dimensions', 'neg_elbo', False)]
+    if markdown:
+        rts = list(tables)
+        lines = ['| metric | ' + ' | '.join(f'{rt} trained / random' for rt in rts) + ' |',
+                 '|---|' + '---|' * len(rts)]
+        for label, module, key in COMPONENT_ROWS:
+            cells = [f'{tables[rt][module][f"trained_{key}"]:.3f} / '
+                     f'{tables[rt][module][f"random_{key}"]:.3f}' for rt in rts]
+            lines.append(f'| {label} | ' + ' | '.join(cells) + ' |')
+        return '\n'.join(lines)
     lines = [f'{"room type":10s} {"metric":26s} {"trained":>10s} {"random":>10s}']
     for rt, table in tables.items():
-        for label, module, key, _higher in rows:
+        for label, module, key in COMPONENT_ROWS:
             tr = table[module][f'trained_{key}']
             rn = table[module][f'random_{key}']
             lines.append(f'{rt:10s} {label:26s} {tr:10.4f} {rn:10.4f}')
