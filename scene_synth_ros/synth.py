@@ -122,11 +122,16 @@ class Synthesizer:
             self._renderers[resolution] = TopDownRenderer(resolution, cache_size=16)
         return self._renderers[resolution]
 
-    def _context(self, room: Room, seed: int) -> _Context:
+    def _context(self, room: Room, seed: int, objects=()) -> _Context:
         try:
             rt = resolve_room_type(room.room_type)
         except KeyError as e:
             raise SynthesisError(str(e.args[0])) from None
+        spec = room_spec(rt)
+        for o in objects:
+            if o.category not in spec:
+                raise SynthesisError(f'object {o.id!r} is a {o.category}, which is not one of '
+                                     f'the {rt} categories the networks know')
         bundle = self.bundle(rt)
         m = bundle.config.model
         try:
@@ -143,7 +148,7 @@ class Synthesizer:
         for z in zones:
             door_mask |= shapely.contains_xy(z, centres[:, 0], centres[:, 1])
         gen = torch.Generator().manual_seed(int(seed) & 0x7FFF_FFFF_FFFF_FFFF)
-        return _Context(room, room_spec(rt), bundle, frame, grid, floor_mask.reshape(n, n),
+        return _Context(room, spec, bundle, frame, grid, floor_mask.reshape(n, n),
                         door_mask.reshape(n, n),
                         room.polygon.buffer(FLOOR_TOLERANCE, join_style='mitre'), zones,
                         np.random.default_rng(seed), gen, {k: 0.0 for k in MODULES})
@@ -159,7 +164,7 @@ class Synthesizer:
         """Add objects to ``scene`` (a copy; what is there stays) until the category module
         says STOP, ``max_objects`` is reached or nothing more fits."""
         t0 = time.perf_counter()
-        ctx = self._context(scene.room, seed)
+        ctx = self._context(scene.room, seed, scene.objects)
         out = scene.copy()
         added: list[PlacedObject] = []
         stopped = 'stop'
@@ -181,7 +186,7 @@ class Synthesizer:
     def next_object(self, scene: Scene, seed: int = 0) -> PlacedObject | None:
         """One more object for ``scene`` (not added to it), or None when the model says STOP
         or nothing fits."""
-        ctx = self._context(scene.room, seed)
+        ctx = self._context(scene.room, seed, scene.objects)
         if len(scene.objects) >= self.config.max_objects:
             return None
         with torch.inference_mode():
@@ -193,7 +198,7 @@ class Synthesizer:
         """Up to ``k`` distinct proposals for the next object (different category, or the
         same category at least half a metre away or facing another way); nothing is
         committed. STOP is not a proposal."""
-        ctx = self._context(scene.room, seed)
+        ctx = self._context(scene.room, seed, scene.objects)
         found: list[PlacedObject] = []
         with torch.inference_mode():
             for _ in range(max_tries or 6 * k):

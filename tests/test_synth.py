@@ -169,6 +169,10 @@ def test_errors_say_what_is_wrong(tmp_path, tiny_weights):
     huge = Room('bathroom', [(0, 0), (6, 0), (6, 3), (0, 3)])
     with pytest.raises(SynthesisError, match='more than the 5 m'):
         Synthesizer(tiny_weights).generate(huge)
+    odd = Scene(empty_room('bathroom', 0), [box('double bed', 1.0, 1.0, 1.6, 2.0, oid='bed')])
+    with pytest.raises(SynthesisError, match="'bed' is a double bed, which is not one of the "
+                                             'bathroom categories'):
+        Synthesizer(tiny_weights).complete(odd)
 
 
 # ---- the shipped weights --------------------------------------------------------------------------
