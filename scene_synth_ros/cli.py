@@ -317,6 +317,14 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument('--out', help='write the proposals (JSON list of objects) here')
     c.set_defaults(func=cmd_suggest)
 
+    c = sub.add_parser('export', help='write a scene as a Gazebo SDF world and/or one glTF')
+    c.add_argument('scene', help='a scene JSON')
+    c.add_argument('--sdf', help='the world file to write')
+    c.add_argument('--mesh-dir', help='where the SDF\'s OBJ meshes go (default: '
+                   '<world>_meshes/ beside it)')
+    c.add_argument('--gltf', help='the binary glTF (.glb) to write')
+    c.set_defaults(func=cmd_export)
+
     c = sub.add_parser('train', help='train the four networks of a room type (resumable)')
     c.add_argument('--room-type', default='all', help='bedroom, living, office, bathroom or all')
     c.add_argument('--config', help='model and training configuration (YAML; default: '
@@ -473,6 +481,20 @@ def _synthesis_options(c, out: bool = True) -> None:
     if out:
         c.add_argument('--out', help='write the scene JSON here')
     c.add_argument('--png', help='write a top-down picture here')
+
+
+def cmd_export(args) -> int:
+    from .export import export_gltf, export_sdf
+    scene = _load(args.scene)
+    if not (args.sdf or args.gltf):
+        raise UserError('export needs --sdf and/or --gltf to know what to write')
+    if args.sdf:
+        export_sdf(scene, args.sdf, args.mesh_dir)
+        print(f'wrote {args.sdf} ({len(scene.objects)} objects)')
+    if args.gltf:
+        export_gltf(scene, args.gltf)
+        print(f'wrote {args.gltf}')
+    return 0
 
 
 # ---- training ----------------------------------------------------------------------------
