@@ -48,6 +48,19 @@ def door_entry_point(room: Room, door: Opening, robot_width: float = ROBOT_WIDTH
     return Point(p)
 
 
+def overlaps_any(obj: PlacedObject, others, tol: float = COLLISION_TOLERANCE) -> bool:
+    """Whether ``obj`` interpenetrates any of ``others`` by more than ``tol`` (the pairwise
+    rule of ``collisions``)."""
+    mine = shrunk_footprint(obj, tol / 2)
+    return any(mine.intersects(shrunk_footprint(o, tol / 2)) for o in others)
+
+
+def enters_zone(obj: PlacedObject, zone: Polygon, tol: float = COLLISION_TOLERANCE) -> bool:
+    """Whether ``obj`` enters a door's clear ``zone`` by more than ``tol`` (the rule of
+    ``blocked_doors``)."""
+    return zone.intersects(shrunk_footprint(obj, tol))
+
+
 def collisions(scene: Scene, tol: float = COLLISION_TOLERANCE) -> list[tuple[str, str]]:
     """Pairs of first-tier objects that interpenetrate by more than ``tol``."""
     objs = scene.first_tier
@@ -67,13 +80,9 @@ def off_floor(scene: Scene, tol: float = FLOOR_TOLERANCE) -> list[str]:
 
 def blocked_doors(scene: Scene, tol: float = COLLISION_TOLERANCE) -> list[int]:
     """Indices of doors whose clear zone a first-tier object enters by more than ``tol``."""
-    out = []
-    shrunk = [shrunk_footprint(o, tol) for o in scene.first_tier]
-    for k, door in enumerate(scene.room.doors):
-        zone = door_zone(scene.room, door)
-        if any(zone.intersects(s) for s in shrunk):
-            out.append(k)
-    return out
+    first = scene.first_tier
+    return [k for k, door in enumerate(scene.room.doors)
+            if any(enters_zone(o, door_zone(scene.room, door), tol) for o in first)]
 
 
 def support_fraction(child: PlacedObject, parent: PlacedObject) -> float:

@@ -28,8 +28,8 @@ import torch
 
 from . import catalog
 from .categories import CATEGORIES, resolve_room_type, room_spec
-from .geometry import (COLLISION_TOLERANCE, FLOOR_TOLERANCE, MIN_SUPPORT, door_zone,
-                       doors_connected, shrunk_footprint)
+from .geometry import (FLOOR_TOLERANCE, MIN_SUPPORT, door_zone, doors_connected, enters_zone,
+                       overlaps_any, support_fraction)
 from .models.bundle import Bundle, bundle_path, load_bundle
 from .models.config import resolve_device
 from .models.category import category_probabilities
@@ -383,21 +383,15 @@ class Synthesizer:
     def fits(self, ctx: _Context, scene: Scene, obj: PlacedObject,
              parent: PlacedObject | None = None) -> bool:
         """The insertion's rejection rules (see the module docstring)."""
-        fp = obj.footprint()
-        if not ctx.floor.covers(fp):
+        if not ctx.floor.covers(obj.footprint()):
             return False
         if obj.support is not None:
-            if parent is None or fp.intersection(parent.footprint()).area < MIN_SUPPORT * fp.area:
+            if parent is None or support_fraction(obj, parent) < MIN_SUPPORT:
                 return False
-            mine = shrunk_footprint(obj, COLLISION_TOLERANCE / 2)
-            return not any(mine.intersects(shrunk_footprint(s, COLLISION_TOLERANCE / 2))
-                           for s in scene.children_of(parent.id))
-        mine = shrunk_footprint(obj, COLLISION_TOLERANCE / 2)
-        if any(mine.intersects(shrunk_footprint(o, COLLISION_TOLERANCE / 2))
-               for o in scene.first_tier):
+            return not overlaps_any(obj, scene.children_of(parent.id))
+        if overlaps_any(obj, scene.first_tier):
             return False
-        inner = shrunk_footprint(obj, COLLISION_TOLERANCE)
-        if any(z.intersects(inner) for z in ctx.zones):
+        if any(enters_zone(obj, z) for z in ctx.zones):
             return False
         # The robot path: required to stay open if it was open before this object.
         if ctx.room.doors:
