@@ -167,6 +167,7 @@ def train_module(module: str, net: nn.Module, source: ExampleSource, val: Exampl
                desc=f'{source.room_type}/{module}', unit='step', disable=not progress,
                mininterval=5.0)
     running: dict[str, float] = {}
+    last_val: dict[str, float] | None = None
     t0 = time.perf_counter()
     for step in bar:
         for g in opt.param_groups:
@@ -189,17 +190,19 @@ def train_module(module: str, net: nn.Module, source: ExampleSource, val: Exampl
                  'seconds': round(time.perf_counter() - t0, 1),
                  **{f'train_{k}': round(v, 5) for k, v in running.items()}})
         if done % t.val_every == 0 or done == sched.steps:
-            m = evaluate(module, net, val, cfg, device, t.seed, t.val_examples)
+            last_val = evaluate(module, net, val, cfg, device, t.seed, t.val_examples)
             log({'module': module, 'step': done, **{f'val_{k}': round(v, 5)
-                                                       for k, v in m.items()}})
+                                                       for k, v in last_val.items()}})
         if done % t.checkpoint_every == 0 or done == sched.steps or done == until:
             save(done)
         if done == until:
             bar.close()
             return None
     bar.close()
+    if last_val is None:      # resumed at the end of the schedule: nothing was validated
+        last_val = evaluate(module, net, val, cfg, device, t.seed, t.val_examples)
     net.eval()
-    return evaluate(module, net, val, cfg, device, t.seed, t.val_examples)
+    return last_val
 
 
 def _discriminator_step(disc, disc_opt, net, batch, device, extent: float) -> None:
