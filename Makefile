@@ -31,6 +31,8 @@ bench: install
 	$(PY) benchmarks/bench_render.py
 	$(PY) benchmarks/bench_corpus.py
 	$(PY) benchmarks/bench_synth.py
+	$(PY) benchmarks/bench_training.py
+	$(PY) benchmarks/module_diagnostics.py
 
 gallery: install
 	$(VENV)/bin/scene-synth gallery --out docs/gallery/corpus.png

@@ -1,0 +1,61 @@
+"""How fast each module trains alone on one core, and what that makes of a whole schedule.
+
+Runs ``--steps`` training steps of every module of one room type (default bedroom, the room
+type with the most categories) with one torch thread, exactly as ``scene-synth train`` does
+(same batches, losses and, for dimensions, the discriminator), and projects the
+configuration's schedule from the measured rates: one room type and all four, sequentially
+on one core. Corpus generation and validation are not included.
+
+    .venv/bin/python benchmarks/bench_training.py [--room-type bedroom] [--steps 30]
+        [--config config/compact.yaml]
+"""
+import argparse
+from pathlib import Path
+import sys
+import tempfile
+import time
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+import torch  # noqa: E402
+
+from scene_synth_ros.models.bundle import NETWORKS, build_networks  # noqa: E402
+from scene_synth_ros.models.config import PipelineConfig  # noqa: E402
+from scene_synth_ros.models.examples import ExampleSource  # noqa: E402
+from scene_synth_ros.models.train import load_corpus, train_module  # noqa: E402
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument('--room-type', default='bedroom')
+    ap.add_argument('--steps', type=int, default=30)
+    ap.add_argument('--config', default=str(ROOT / 'config' / 'compact.yaml'))
+    args = ap.parse_args()
+    torch.set_num_threads(1)
+    cfg = PipelineConfig.from_yaml(args.config)
+    cfg.train.train_rooms, cfg.train.val_rooms = 300, 10
+    corpus = load_corpus(args.room_type, cfg, workers=1)
+    m = cfg.model
+    src = ExampleSource(args.room_type, corpus.train, m.resolution, m.location_resolution,
+                        target_radius=cfg.train.location_target_radius)
+    val = ExampleSource(args.room_type, corpus.val, m.resolution, m.location_resolution)
+    nets = build_networks(args.room_type, m, seed=0)
+    total = 0.0
+    print(f'{args.room_type}, {cfg.name} configuration, 1 thread, {args.steps} steps each:')
+    with tempfile.TemporaryDirectory() as run:
+        for name in NETWORKS:
+            t0 = time.perf_counter()
+            train_module(name, nets[name], src, val, cfg, 'cpu', Path(run), lambda e: None,
+                         progress=False, until=args.steps)
+            rate = args.steps / (time.perf_counter() - t0)
+            steps = getattr(cfg.train, name).steps
+            total += steps / rate
+            print(f'  {name:12s} {rate:5.2f} steps/s -> {steps:5d} steps in '
+                  f'{steps / rate / 60:5.1f} min')
+    print(f'one room type: {total / 60:.0f} min; all four sequentially on one core: '
+          f'about {4 * total / 3600:.1f} h (smaller room types train a little faster)')
+
+
+if __name__ == '__main__':
+    main()
