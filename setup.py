@@ -39,6 +39,7 @@ setup(
     entry_points={
         'console_scripts': [
             'scene-synth = scene_synth_ros.cli:main',
+            'scene_synth_node = scene_synth_ros.node:main',
         ],
     },
 )

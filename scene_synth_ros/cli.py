@@ -351,6 +351,9 @@ def build_parser() -> argparse.ArgumentParser:
     c = sub.add_parser('validate', help='check scene JSON files: schema and physics')
     c.add_argument('files', nargs='+')
     c.set_defaults(func=cmd_validate)
+
+    from .ros_cli import add_parser as add_ros_parser
+    add_ros_parser(sub)
     return p
 
 

@@ -46,6 +46,11 @@ class SynthesisError(Exception):
     """A room the synthesizer cannot work on, said in one sentence."""
 
 
+class SynthesisCancelled(Exception):
+    """``complete`` was told to stop by its ``cancel`` callback (a newer request superseded
+    it); nothing of the half-furnished room is returned."""
+
+
 @dataclass
 class SynthConfig:
     location_temperature: float = 0.8   # tau of the location distribution (paper: 0.8)
@@ -154,15 +159,18 @@ class Synthesizer:
                         np.random.default_rng(seed), gen, {k: 0.0 for k in MODULES})
 
     # ---- public modes ---------------------------------------------------------------------
-    def generate(self, room: Room | Scene, seed: int = 0) -> Synthesis:
+    def generate(self, room: Room | Scene, seed: int = 0, cancel=None) -> Synthesis:
         """Furnish ``room`` from empty (objects of a Scene given here are dropped)."""
         if isinstance(room, Scene):
             room = room.room
-        return self.complete(Scene(room, []), seed)
+        return self.complete(Scene(room, []), seed, cancel)
 
-    def complete(self, scene: Scene, seed: int = 0) -> Synthesis:
+    def complete(self, scene: Scene, seed: int = 0, cancel=None) -> Synthesis:
         """Add objects to ``scene`` (a copy; what is there stays) until the category module
-        says STOP, ``max_objects`` is reached or nothing more fits."""
+        says STOP, ``max_objects`` is reached or nothing more fits.
+
+        ``cancel``, a callable, is asked before every insertion; when it returns true the
+        call raises ``SynthesisCancelled``."""
         t0 = time.perf_counter()
         ctx = self._context(scene.room, seed, scene.objects)
         out = scene.copy()
@@ -170,6 +178,8 @@ class Synthesizer:
         stopped = 'stop'
         with torch.inference_mode():
             while True:
+                if cancel is not None and cancel():
+                    raise SynthesisCancelled('superseded by a newer request')
                 if len(out.objects) >= self.config.max_objects:
                     stopped = 'max_objects'
                     break

@@ -1,0 +1,215 @@
+"""``scene_synth_node``: the ROS 2 face of ``server.SceneServer``.
+
+    ros2 run scene_synth_ros scene_synth_node [--ros-args -p room_type:=office ...]
+    python -m scene_synth_ros.node [--ros-args ...]        (without the ros2 tools)
+
+Subscriptions ~/room_layout (std_msgs/String, JSON) and ~/room_polygon
+(geometry_msgs/PolygonStamped); publications ~/markers, ~/poses, ~/scene (reliable, transient
+local) and /diagnostics; services ~/next_object, ~/generate, ~/reset (std_srvs/Trigger, JSON in
+``message``). This module only converts between messages and the server's calls.
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+import sys
+
+import rclpy
+from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
+from rclpy.exceptions import InvalidParameterTypeException, InvalidParameterValueException
+from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from rcl_interfaces.msg import (FloatingPointRange, IntegerRange, ParameterDescriptor,
+                                SetParametersResult)
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
+from geometry_msgs.msg import Point, Pose, PoseArray, PolygonStamped
+from std_msgs.msg import ColorRGBA, String
+from std_srvs.srv import Trigger
+from visualization_msgs.msg import Marker, MarkerArray
+
+from .markers import MeshCache, scene_markers
+from .models.bundle import BundleError
+from .server import PARAMETERS, ConfigError, SceneServer, Served, ServerConfig, Status
+from .synth import SynthesisError
+
+NODE_NAME = 'scene_synth_node'
+EXIT_STARTUP_FAILED = 1
+
+# A late `ros2 topic echo` or RViz still gets the last room.
+LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
+INPUT = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
+_KINDS = {'cube': Marker.CUBE, 'mesh': Marker.MESH_RESOURCE, 'text': Marker.TEXT_VIEW_FACING,
+          'triangle_list': Marker.TRIANGLE_LIST}
+
+
+class StartupError(Exception):
+    """The node cannot serve (bad weights, bad parameter): one sentence, exit non-zero."""
+
+
+def _descriptor(name: str) -> ParameterDescriptor:
+    text, limits, read_only = PARAMETERS[name]
+    d = ParameterDescriptor(description=text, read_only=read_only)
+    if isinstance(limits, tuple) and limits and isinstance(limits[0], float):
+        d.floating_point_range = [FloatingPointRange(from_value=limits[0], to_value=limits[1])]
+    elif isinstance(limits, tuple) and limits and isinstance(limits[0], int):
+        d.integer_range = [IntegerRange(from_value=limits[0], to_value=limits[1], step=1)]
+    elif isinstance(limits, tuple):
+        d.additional_constraints = 'one of: ' + ', '.join(limits)
+    return d
+
+
+def yaw_quaternion(yaw: float) -> tuple[float, float, float, float]:
+    """(x, y, z, w) of a rotation by ``yaw`` about +z."""
+    return 0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)
+
+
+def _pose(position, yaw: float) -> Pose:
+    p = Pose()
+    p.position.x, p.position.y, p.position.z = (float(v) for v in position)
+    (p.orientation.x, p.orientation.y, p.orientation.z,
+     p.orientation.w) = yaw_quaternion(float(yaw))
+    return p
+
+
+class SceneSynthNode(Node):
+    def __init__(self, **kwargs):
+        super().__init__(NODE_NAME, **kwargs)
+        defaults = ServerConfig()
+        try:
+            for name in PARAMETERS:
+                self.declare_parameter(name, getattr(defaults, name), _descriptor(name))
+        except (InvalidParameterTypeException, InvalidParameterValueException) as e:
+            raise StartupError(' '.join(str(e).split())) from None
+        config = ServerConfig(**{n: self.get_parameter(n).value for n in PARAMETERS})
+        try:
+            self.server = SceneServer(config, self._publish_room, self._status_changed,
+                                      self._log)
+        except (BundleError, SynthesisError, ConfigError) as e:
+            raise StartupError(str(e)) from None
+        self._meshes = MeshCache(Path(config.mesh_dir).expanduser() if config.mesh_dir
+                                 else Path.home() / '.cache' / 'scene_synth_ros' / 'meshes')
+        self.add_on_set_parameters_callback(self._on_parameters)
+
+        inputs = MutuallyExclusiveCallbackGroup()
+        services = ReentrantCallbackGroup()     # a waiting service must not block another
+        self.markers_pub = self.create_publisher(MarkerArray, '~/markers', LATCHED)
+        self.poses_pub = self.create_publisher(PoseArray, '~/poses', LATCHED)
+        self.scene_pub = self.create_publisher(String, '~/scene', LATCHED)
+        self.diag_pub = self.create_publisher(DiagnosticArray, '/diagnostics', 10)
+        self.create_subscription(String, '~/room_layout', self._on_layout, INPUT,
+                                 callback_group=inputs)
+        self.create_subscription(PolygonStamped, '~/room_polygon', self._on_polygon, INPUT,
+                                 callback_group=inputs)
+        for kind in ('next_object', 'generate', 'reset'):
+            self.create_service(Trigger, f'~/{kind}', self._service(kind),
+                                callback_group=services)
+        self.create_timer(1.0, self._publish_diagnostics,
+                          callback_group=MutuallyExclusiveCallbackGroup())
+        self.get_logger().info(
+            f'ready: {len(PARAMETERS)} parameters, weights from '
+            f'{config.weights_dir or "the package"}, device {config.device}, torch threads '
+            f'{config.torch_threads}; waiting for ~/room_layout or ~/room_polygon')
+
+    # ---- inputs ---------------------------------------------------------------------------
+    def _on_layout(self, msg: String) -> None:
+        self.server.submit_layout(msg.data, 'room_layout')
+
+    def _on_polygon(self, msg: PolygonStamped) -> None:
+        self.server.submit_polygon([(p.x, p.y, p.z) for p in msg.polygon.points],
+                                   msg.header.frame_id)
+
+    def _service(self, kind: str):
+        def call(request, response):
+            response.success, response.message = self.server.request(kind)
+            return response
+        return call
+
+    def _on_parameters(self, params: list[Parameter]) -> SetParametersResult:
+        try:
+            self.server.reconfigure({p.name: p.value for p in params})
+        except ConfigError as e:
+            self._log('warn', f'parameter change refused: {e}')
+            return SetParametersResult(successful=False, reason=str(e))
+        return SetParametersResult(successful=True)
+
+    # ---- outputs --------------------------------------------------------------------------
+    def _publish_room(self, served: Served) -> None:
+        cfg = self.server.config
+        stamp = self.get_clock().now().to_msg()
+        array = MarkerArray()
+        clear = Marker(action=Marker.DELETEALL)
+        clear.header.frame_id, clear.header.stamp = cfg.frame_id, stamp
+        array.markers.append(clear)
+        for spec in scene_markers(served.scene, cfg.marker_style, self._meshes):
+            m = Marker(ns=spec.ns, id=spec.id, type=_KINDS[spec.kind], action=Marker.ADD)
+            m.header.frame_id, m.header.stamp = cfg.frame_id, stamp
+            m.pose = _pose(spec.position, spec.yaw)
+            m.scale.x, m.scale.y, m.scale.z = (float(v) for v in spec.scale)
+            m.color = ColorRGBA(r=spec.color[0], g=spec.color[1], b=spec.color[2],
+                                a=spec.color[3])
+            m.text = spec.text
+            m.mesh_resource = spec.mesh_resource
+            m.mesh_use_embedded_materials = bool(spec.mesh_resource)
+            m.points = [Point(x=p[0], y=p[1], z=p[2]) for p in spec.points]
+            array.markers.append(m)
+        poses = PoseArray()
+        poses.header.frame_id, poses.header.stamp = cfg.frame_id, stamp
+        poses.poses = [_pose(o.position, o.yaw) for o in served.scene.objects]
+        self.markers_pub.publish(array)
+        self.poses_pub.publish(poses)
+        self.scene_pub.publish(String(data=served.json))
+        added = f', {len(served.added)} added in {served.seconds:.2f} s' if served.added else ''
+        self.get_logger().info(
+            f'{served.source}: {served.scene.room.room_type} with {len(served.scene)} objects'
+            f'{added} (seed {served.seed})')
+
+    def _status_changed(self, status: Status) -> None:
+        self._publish_diagnostics(status)
+
+    def _publish_diagnostics(self, status: Status | None = None) -> None:
+        status = status or self.server.status
+        array = DiagnosticArray()
+        array.header.stamp = self.get_clock().now().to_msg()
+        array.status = [DiagnosticStatus(
+            level=bytes([status.level]), name=f'{self.get_name()}: scene synthesis',
+            message=status.message, hardware_id='scene_synth_ros',
+            values=[KeyValue(key=k, value=v) for k, v in status.values().items()])]
+        try:
+            self.diag_pub.publish(array)
+        except Exception:   # the context is going away during shutdown
+            pass
+
+    def _log(self, level: str, text: str) -> None:
+        getattr(self.get_logger(), level)(text)
+
+    def destroy_node(self):
+        self.server.close()
+        super().destroy_node()
+
+
+def main(args: list[str] | None = None) -> int:
+    rclpy.init(args=args)
+    node = None
+    code = 0
+    try:
+        node = SceneSynthNode()
+        executor = MultiThreadedExecutor(num_threads=4)
+        executor.add_node(node)
+        executor.spin()
+    except StartupError as e:
+        print(f'{NODE_NAME}: cannot start: {e}', file=sys.stderr)
+        code = EXIT_STARTUP_FAILED
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        if node is not None:
+            node.destroy_node()
+        rclpy.try_shutdown()
+    return code
+
+
+if __name__ == '__main__':
+    sys.exit(main())

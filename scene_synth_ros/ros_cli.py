@@ -1,0 +1,236 @@
+"""``scene-synth ros ...``: the node's clients and its demo on the command line.
+
+rclpy is imported only when one of these commands runs, so the rest of the command line
+works without ROS.
+"""
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+import random
+import signal
+import time
+
+from .cli import UserError, _object_table
+from .scene import PlacedObject
+
+DEMO_NODE_START_TIMEOUT = 90.0
+
+
+def add_parser(sub) -> None:
+    ros = sub.add_parser('ros', help='talk to a running scene_synth_node (rclpy clients), or '
+                         'run the node demo')
+    ros.add_argument('--node', default='/scene_synth_node', help='the node to talk to')
+    ros.add_argument('--domain-id', type=int,
+                     help='ROS domain (default: $ROS_DOMAIN_ID, else 0)')
+    ros.add_argument('--timeout', type=float, default=60.0, help='seconds to wait for answers')
+    rsub = ros.add_subparsers(dest='ros_command', required=True)
+
+    c = rsub.add_parser('publish-layout', help='publish a room layout JSON and print the room '
+                        'the node answers with')
+    c.add_argument('layout')
+    c.add_argument('--no-wait', action='store_true', help='publish and return')
+    c.add_argument('--out', help='write the scene JSON here')
+    c.add_argument('--png', help='write a top-down picture here')
+    c.set_defaults(func=cmd_publish_layout)
+
+    for kind, text in (('next-object', 'insert one object into the current room'),
+                       ('generate', 'furnish the current room again with a new seed'),
+                       ('reset', 'remove all objects from the current room')):
+        c = rsub.add_parser(kind, help=text)
+        c.set_defaults(func=cmd_service, service=kind.replace('-', '_'))
+
+    c = rsub.add_parser('echo', help='print the latest message of a topic')
+    c.add_argument('topic', choices=('scene', 'markers', 'poses', 'diagnostics'))
+    c.add_argument('--count', type=int, default=1, help='messages to print (diagnostics: '
+                   'one per second)')
+    c.set_defaults(func=cmd_echo)
+
+    c = rsub.add_parser('param', help='get or set node parameters')
+    c.add_argument('action', choices=('get', 'set'))
+    c.add_argument('name')
+    c.add_argument('value', nargs='?', help='set: a YAML scalar (true, 3, 0.5, office)')
+    c.set_defaults(func=cmd_param)
+
+    c = rsub.add_parser('demo', help='start the node, furnish an example room, complete a '
+                        'partial one object at a time, stop the node')
+    c.add_argument('--out', default='demo_out')
+    c.add_argument('--weights-dir', help="trained bundles (default: the package's weights/)")
+    c.set_defaults(func=cmd_demo)
+
+
+def _client(args):
+    from .ros_client import SceneSynthClient
+    domain = args.domain_id
+    if domain is None:
+        domain = int(os.environ.get('ROS_DOMAIN_ID', '0') or 0)
+    if not 0 <= domain <= 232:
+        raise UserError(f'--domain-id must be between 0 and 232, got {domain}')
+    return SceneSynthClient(args.node, domain)
+
+
+def _guard(fn):
+    """Run ``fn`` and turn the clients' errors into one-sentence user errors."""
+    from .ros_client import ClientError
+    try:
+        return fn()
+    except ClientError as e:
+        raise UserError(str(e)) from None
+
+
+def _show_scene(d: dict, out: str | None, png: str | None, title: str) -> None:
+    from .schema import parse_scene, save_scene
+    scene = parse_scene(d)
+    meta = scene.meta
+    print(_object_table(scene.objects, f'{scene.room.room_type}, {scene.room.area:.1f} m², '
+                        f'{len(scene)} objects (seed {meta.get("seed")})'))
+    if out:
+        Path(out).parent.mkdir(parents=True, exist_ok=True)
+        save_scene(scene, out)
+        print(f'wrote {out}')
+    if png:
+        from .plot import save_png
+        Path(png).parent.mkdir(parents=True, exist_ok=True)
+        save_png(scene, png, title=title)
+        print(f'wrote {png}')
+
+
+def cmd_publish_layout(args) -> int:
+    try:
+        text = Path(args.layout).read_text(encoding='utf-8')
+    except OSError as e:
+        raise UserError(f'{args.layout}: {e.strerror}') from None
+    with _client(args) as client:
+        d = _guard(lambda: client.publish_layout(text, wait=not args.no_wait,
+                                                 timeout=args.timeout))
+        if d is None:
+            print(f'published {args.layout}')
+            return 0
+        _show_scene(d, args.out, args.png, Path(args.layout).stem)
+    return 0
+
+
+def cmd_service(args) -> int:
+    with _client(args) as client:
+        ok, message = _guard(lambda: client.call(args.service, args.timeout))
+    if not ok:
+        raise UserError(f'{args.service} refused: {message}')
+    print(message)
+    return 0
+
+
+def cmd_echo(args) -> int:
+    from .ros_client import format_markers, format_poses
+    with _client(args) as client:
+        for k in range(args.count):
+            seen = client.count(args.topic)
+            if k and args.topic != 'diagnostics':
+                _guard(lambda: client.spin_until(lambda: client.count(args.topic) > seen,
+                                                 args.timeout, args.topic))
+            if args.topic == 'diagnostics':
+                if k:
+                    _guard(lambda: client.spin_until(
+                        lambda: client.count('diagnostics') > seen, args.timeout,
+                        'diagnostics'))
+                d = _guard(lambda: client.diagnostics(args.timeout))
+                print('\n'.join(f'{k}: {v}' for k, v in d.items()))
+                continue
+            msg = _guard(lambda: client.latest(args.topic, args.timeout))
+            if args.topic == 'scene':
+                print(msg.data)
+            elif args.topic == 'markers':
+                print(format_markers(msg))
+            else:
+                print(format_poses(msg))
+            if k + 1 < args.count:
+                print('---')
+    return 0
+
+
+def cmd_param(args) -> int:
+    import yaml
+    with _client(args) as client:
+        if args.action == 'get':
+            values = _guard(lambda: client.get_parameters([args.name], args.timeout))
+            print(f'{args.name}: {values[args.name]!r}')
+            return 0
+        if args.value is None:
+            raise UserError('param set needs a value')
+        value = yaml.safe_load(args.value)
+        if value is None:
+            value = ''
+        refused = _guard(lambda: client.set_parameters({args.name: value}, args.timeout))
+    if refused:
+        raise UserError(f'the node refused {refused[0]}')
+    print(f'{args.name} set to {value!r}')
+    return 0
+
+
+# ---- the demo -----------------------------------------------------------------------------
+def cmd_demo(args) -> int:
+    """Start the node in a child process, publish an example layout, show the room, ask for
+    one more object in a partial room, and stop the node with SIGINT."""
+    from .paths import examples_dir
+    from .ros_client import ClientError, SceneSynthClient, start_node, stop_node
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    domain = args.domain_id
+    if domain is None:      # a domain of its own, so the demo never meets someone's robots
+        domain = random.Random(os.getpid()).randrange(100, 200)
+    os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+    log_path = out / 'node.log'
+    params = {'weights_dir': args.weights_dir} if args.weights_dir else {}
+    t0 = time.perf_counter()
+    with open(log_path, 'w') as log:
+        proc = start_node(domain, params, log)
+    print(f'started scene_synth_node (pid {proc.pid}, ROS_DOMAIN_ID={domain}, log {log_path})')
+    code = None
+    try:
+        with SceneSynthClient(args.node, domain) as client:
+            try:
+                client.spin_until(lambda: proc.poll() is not None or client.ready(),
+                                  DEMO_NODE_START_TIMEOUT, 'services')
+                if proc.poll() is not None:
+                    raise UserError(f'the node exited with code {proc.returncode} at start-up; '
+                                    f'see {log_path}')
+                print(f'node ready after {time.perf_counter() - t0:.1f} s')
+
+                layout = examples_dir() / 'bedroom_layout.json'
+                t = time.perf_counter()
+                d = client.publish_layout(layout.read_text(), timeout=args.timeout)
+                latency = time.perf_counter() - t
+                markers = client.latest('markers')
+                poses = client.latest('poses')
+                print(f'\npublished {layout.name}; the room arrived after {latency:.2f} s '
+                      f'({len(markers.markers)} markers, {len(poses.poses)} poses)')
+                _show_scene(d, str(out / 'ros_bedroom.json'), str(out / 'ros_bedroom.png'),
+                            f'{layout.stem} via scene_synth_node (seed {d["meta"]["seed"]})')
+
+                refused = client.set_parameters({'auto_generate': False})
+                if refused:
+                    raise UserError(f'the node refused {refused[0]}')
+                partial = examples_dir() / 'partial_bedroom.json'
+                d = client.publish_layout(partial.read_text(), timeout=args.timeout)
+                print(f'\nauto_generate set to false; published {partial.name} '
+                      f'({len(d["objects"])} objects); calling ~/next_object')
+                before = client.count('scene')
+                t = time.perf_counter()
+                ok, message = client.call('next_object', args.timeout)
+                if not ok:
+                    raise UserError(f'next_object refused: {message}')
+                print(f'next_object answered in {time.perf_counter() - t:.2f} s:')
+                obj = PlacedObject.from_dict(json.loads(message))
+                print(_object_table([obj]))
+                d = client.wait_scene(before, args.timeout)
+                _show_scene(d, str(out / 'ros_partial_next.json'),
+                            str(out / 'ros_partial_next.png'),
+                            f'{partial.stem} + next_object via scene_synth_node')
+            except ClientError as e:
+                raise UserError(f'{e} (node log: {log_path})') from None
+    finally:
+        code = stop_node(proc, signal.SIGINT)
+    print(f'\nstopped the node with SIGINT: exit code {code}')
+    if code != 0:
+        raise UserError(f'the node exited with code {code}; see {log_path}')
+    return 0

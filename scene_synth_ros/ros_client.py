@@ -1,0 +1,271 @@
+"""Clients of ``scene_synth_node`` on rclpy, for where the ros2 command-line tools are not
+installed: what ``scene-synth ros ...`` runs, and what the node tests and benchmarks use.
+
+Like ``node.py`` this is an adapter: it imports rclpy; the library does not.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+from pathlib import Path
+import signal
+import subprocess
+import sys
+import time
+from typing import Any
+
+import rclpy
+from rclpy.context import Context
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.parameter import Parameter
+from rclpy.parameter_client import AsyncParameterClient
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.signals import SignalHandlerOptions
+from diagnostic_msgs.msg import DiagnosticArray
+from geometry_msgs.msg import Point32, PolygonStamped, PoseArray
+from std_msgs.msg import String
+from std_srvs.srv import Trigger
+from visualization_msgs.msg import MarkerArray
+
+DEFAULT_NODE = '/scene_synth_node'
+LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
+RELIABLE = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
+TOPICS = {'scene': String, 'markers': MarkerArray, 'poses': PoseArray}
+
+
+class ClientError(Exception):
+    """The node did not answer as asked: one sentence."""
+
+
+class SceneSynthClient:
+    """Talks to one ``scene_synth_node``; keeps the latest message of every output topic."""
+
+    def __init__(self, node: str = DEFAULT_NODE, domain_id: int | None = None,
+                 handle_signals: bool = True):
+        self.target = node if node.startswith('/') else '/' + node
+        self.context = Context()
+        rclpy.init(context=self.context, domain_id=domain_id,
+                   signal_handler_options=None if handle_signals else SignalHandlerOptions.NO)
+        self.node = rclpy.create_node(f'scene_synth_client_{os.getpid()}_{id(self) % 10000}',
+                                      context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+        # topic -> [(sequence number, arrival time, message)], the last 50 of each
+        self.received: dict[str, list[tuple[int, float, Any]]] = {
+            k: [] for k in (*TOPICS, 'diagnostics')}
+        self._counts = dict.fromkeys(self.received, 0)
+        for topic, kind in TOPICS.items():
+            self.node.create_subscription(kind, f'{self.target}/{topic}',
+                                          self._keeper(topic), LATCHED)
+        self.node.create_subscription(DiagnosticArray, '/diagnostics',
+                                      self._keeper('diagnostics'), RELIABLE)
+        self._layout_pub = self.node.create_publisher(String, f'{self.target}/room_layout',
+                                                      RELIABLE)
+        self._polygon_pub = self.node.create_publisher(
+            PolygonStamped, f'{self.target}/room_polygon', RELIABLE)
+        self._services = {k: self.node.create_client(Trigger, f'{self.target}/{k}')
+                          for k in ('next_object', 'generate', 'reset')}
+        self._params = AsyncParameterClient(self.node, self.target)
+
+    def _keeper(self, topic: str):
+        def keep(msg):
+            self._counts[topic] += 1
+            self.received[topic].append((self._counts[topic], time.monotonic(), msg))
+            del self.received[topic][:-50]        # a long echo must not grow without bound
+        return keep
+
+    def close(self) -> None:
+        self.executor.shutdown(timeout_sec=1.0)
+        self.node.destroy_node()
+        rclpy.try_shutdown(context=self.context)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    # ---- waiting --------------------------------------------------------------------------
+    def spin_until(self, predicate, timeout: float, what: str):
+        """Spin until ``predicate()`` returns something truthy; ClientError after timeout."""
+        deadline = time.monotonic() + timeout
+        while True:
+            value = predicate()
+            if value:
+                return value
+            if time.monotonic() > deadline:
+                raise ClientError(f'no {what} from {self.target} within {timeout:.0f} s')
+            self.executor.spin_once(timeout_sec=0.05)
+
+    def ready(self) -> bool:
+        """Whether the node's services and subscriptions are discovered (no spinning)."""
+        return (all(c.service_is_ready() for c in self._services.values())
+                and self._layout_pub.get_subscription_count() > 0
+                and self._polygon_pub.get_subscription_count() > 0)
+
+    def wait_for_node(self, timeout: float = 60.0) -> None:
+        """Wait until the node's services and subscriptions are there."""
+        self.spin_until(self.ready, timeout, 'services')
+
+    def count(self, topic: str) -> int:
+        """How many messages arrived on ``topic`` so far."""
+        return self._counts[topic]
+
+    def latest(self, topic: str, timeout: float = 5.0):
+        """The latest message on ``topic`` (scene, markers, poses, diagnostics)."""
+        return self.spin_until(lambda: self.received[topic] and self.received[topic][-1][2],
+                               timeout, topic)
+
+    def diagnostics(self, timeout: float = 5.0) -> dict[str, str]:
+        """The node's latest diagnostic status as a dict (level, message and its values)."""
+        def mine():
+            for _, _, msg in reversed(self.received['diagnostics']):
+                for st in msg.status:
+                    if st.name.startswith(self.target.rsplit('/', 1)[-1] + ':'):
+                        d = {kv.key: kv.value for kv in st.values}
+                        d.update(level=str(ord(st.level)), message=st.message)
+                        return d
+            return None
+        return self.spin_until(mine, timeout, 'diagnostics')
+
+    def wait_scene(self, after: int, timeout: float = 60.0, room=None) -> dict[str, Any]:
+        """The first scene received after ``after`` scenes (and, if given, of ``room``)."""
+        from .schema import parse_scene
+
+        def arrived():
+            for seq, _, msg in self.received['scene']:
+                if seq <= after:
+                    continue
+                d = json.loads(msg.data)
+                if room is None or parse_scene(d).room == room:
+                    return d
+            return None
+        return self.spin_until(arrived, timeout, 'scene')
+
+    # ---- requests -------------------------------------------------------------------------
+    def publish_layout(self, layout: str | dict, wait: bool = True, timeout: float = 60.0,
+                       check: bool = True) -> dict[str, Any] | None:
+        """Publish a room layout; with ``wait``, return the scene the node answers with.
+
+        With ``check`` the layout is validated here first, so bad input fails at once with
+        the same sentence the node would log."""
+        text = layout if isinstance(layout, str) else json.dumps(layout)
+        room = None
+        if check or wait:
+            from .schema import SceneValidationError, parse_room_layout
+            try:
+                room = parse_room_layout(text).room
+            except SceneValidationError as e:
+                if check:
+                    raise ClientError(f'the layout is invalid: {e}') from None
+        self.spin_until(lambda: self._layout_pub.get_subscription_count() > 0, timeout,
+                        'subscription to room_layout')
+        before = self.count('scene')
+        self._layout_pub.publish(String(data=text))
+        if not wait:
+            return None
+        return self.wait_scene(before, timeout, room)
+
+    def publish_polygon(self, points, frame_id: str = 'map') -> None:
+        msg = PolygonStamped()
+        msg.header.frame_id = frame_id
+        msg.polygon.points = [Point32(x=float(p[0]), y=float(p[1]), z=0.0) for p in points]
+        self.spin_until(lambda: self._polygon_pub.get_subscription_count() > 0, 10.0,
+                        'subscription to room_polygon')
+        self._polygon_pub.publish(msg)
+
+    def call(self, service: str, timeout: float = 120.0) -> tuple[bool, str]:
+        """Call ``next_object``, ``generate`` or ``reset``: (success, message)."""
+        client = self._services[service]
+        self.spin_until(client.service_is_ready, min(timeout, 30.0), f'{service} service')
+        future = client.call_async(Trigger.Request())
+        self.spin_until(future.done, timeout, f'{service} response')
+        response = future.result()
+        return response.success, response.message
+
+    def get_parameters(self, names: list[str], timeout: float = 10.0) -> dict[str, Any]:
+        self.spin_until(lambda: self._params.services_are_ready(), timeout, 'parameter services')
+        future = self._params.get_parameters(names)
+        self.spin_until(future.done, timeout, 'parameters')
+        values = future.result().values
+        return {n: Parameter.from_parameter_msg(_named(n, v)).value
+                for n, v in zip(names, values)}
+
+    def set_parameters(self, values: dict[str, Any], timeout: float = 30.0) -> list[str]:
+        """Set parameters; returns the reasons of those the node refused (empty if none)."""
+        self.spin_until(lambda: self._params.services_are_ready(), timeout, 'parameter services')
+        future = self._params.set_parameters([Parameter(k, value=v) for k, v in values.items()])
+        self.spin_until(future.done, timeout, 'parameter result')
+        return [f'{name}: {r.reason}' for name, r in zip(values, future.result().results)
+                if not r.successful]
+
+
+def _named(name, value):
+    from rcl_interfaces.msg import Parameter as ParameterMsg
+    return ParameterMsg(name=name, value=value)
+
+
+# ---- text renderings for the command line -----------------------------------------------
+def format_markers(msg: MarkerArray) -> str:
+    names = {0: 'ARROW', 1: 'CUBE', 9: 'TEXT', 10: 'MESH', 11: 'TRIANGLE_LIST'}
+    lines = []
+    for m in msg.markers:
+        if m.action == m.DELETEALL:
+            lines.append('DELETEALL')
+            continue
+        yaw = 2 * math.atan2(m.pose.orientation.z, m.pose.orientation.w)
+        lines.append(f'{m.ns:18s} {m.id:3d} {names.get(m.type, m.type):13s} '
+                     f'x {m.pose.position.x:6.2f} y {m.pose.position.y:6.2f} '
+                     f'z {m.pose.position.z:5.2f} yaw {math.degrees(yaw):7.1f}° scale '
+                     f'{m.scale.x:.2f} {m.scale.y:.2f} {m.scale.z:.2f}'
+                     + (f'  "{m.text}"' if m.text else '')
+                     + (f'  {m.mesh_resource}' if m.mesh_resource else ''))
+    return '\n'.join(lines)
+
+
+def format_poses(msg: PoseArray) -> str:
+    lines = [f'frame {msg.header.frame_id}, {len(msg.poses)} poses']
+    for k, p in enumerate(msg.poses):
+        yaw = 2 * math.atan2(p.orientation.z, p.orientation.w)
+        lines.append(f'{k:3d}  x {p.position.x:6.2f}  y {p.position.y:6.2f}  '
+                     f'z {p.position.z:5.2f}  yaw {math.degrees(yaw):7.1f}°')
+    return '\n'.join(lines)
+
+
+# ---- the node as a child process ---------------------------------------------------------
+def node_command(params: dict[str, Any] | None = None) -> list[str]:
+    cmd = [sys.executable, '-m', 'scene_synth_ros.node', '--ros-args']
+    for k, v in (params or {}).items():
+        value = json.dumps(v) if isinstance(v, bool) else str(v)
+        cmd += ['-p', f'{k}:={value}']
+    return cmd
+
+
+def node_env(domain_id: int) -> dict[str, str]:
+    env = dict(os.environ)
+    env['ROS_DOMAIN_ID'] = str(domain_id)
+    env.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+    env['PYTHONUNBUFFERED'] = '1'
+    return env
+
+
+def start_node(domain_id: int, params: dict[str, Any] | None = None, log=None
+               ) -> subprocess.Popen:
+    """Start ``scene_synth_node`` in a child process on ``domain_id``."""
+    return subprocess.Popen(node_command(params), env=node_env(domain_id),
+                            stdout=log or subprocess.DEVNULL,
+                            stderr=subprocess.STDOUT if log else subprocess.DEVNULL)
+
+
+def stop_node(proc: subprocess.Popen, sig: int = signal.SIGINT, timeout: float = 20.0) -> int:
+    """Signal the node and wait for it; returns its exit code (killed after ``timeout``)."""
+    if proc.poll() is None:
+        proc.send_signal(sig)
+        try:
+            proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+    return proc.returncode

@@ -1,0 +1,454 @@
+"""What the ROS node does, without ROS: a current room, a worker that furnishes it, and the
+requests that change it.
+
+The node (``node.py``) only turns messages into calls of ``SceneServer`` and the results
+into messages. Everything here is plain Python so it can be driven and tested from a prompt.
+
+One worker thread runs every synthesis, in the order requests arrive, so subscriptions and
+services are never blocked by the networks. A room layout supersedes whatever came before
+it: the synthesis in progress is cancelled between two insertions and older queued requests
+are dropped, so only complete rooms for the latest layout are ever handed out. Bad input is
+rejected with one sentence; the current room stays as it was.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, fields, replace
+import math
+import os
+from pathlib import Path
+import queue
+import threading
+import time
+from typing import Any, Callable
+
+from .categories import ROOM_TYPES, resolve_room_type
+from .models.bundle import BundleError
+from .models.config import resolve_device
+from .scene import PlacedObject, Scene
+from .schema import SceneValidationError, dump_scene, parse_room_layout
+from .synth import MODULES, SynthConfig, Synthesizer, SynthesisCancelled, SynthesisError
+
+OK, WARN, ERROR = 0, 1, 2               # the levels of diagnostic_msgs/DiagnosticStatus
+MARKER_STYLES = ('cube', 'mesh')
+DEVICES = ('auto', 'cpu', 'cuda')
+SERVICE_TIMEOUT = 120.0                 # seconds a service waits for the worker
+
+
+@dataclass
+class ServerConfig:
+    """The node's parameters (same names), with their defaults."""
+
+    room_type: str = 'bedroom'          # for rooms that arrive as a bare polygon
+    seed: int = 0                       # first seed; every furnishing takes the next one
+    location_temperature: float = 0.8
+    max_objects: int = 30
+    device: str = 'auto'
+    weights_dir: str = ''               # '' = the weights shipped in the package
+    frame_id: str = 'map'
+    marker_style: str = 'cube'
+    auto_generate: bool = True          # furnish as soon as a layout arrives
+    wall_height: float = 2.6            # for rooms that arrive as a bare polygon
+    export_dir: str = ''                # '' = no export; else JSON + SDF + glTF per room
+    mesh_dir: str = ''                  # '' = ~/.cache/scene_synth_ros/meshes
+    torch_threads: int = 2
+
+
+# name -> (description, numeric range or allowed strings, read only). The node builds its
+# parameter descriptors from this table, and ``check`` enforces the same limits.
+PARAMETERS: dict[str, tuple[str, Any, bool]] = {
+    'room_type': ('room type of layouts arriving on ~/room_polygon', ROOM_TYPES, False),
+    'seed': ('seed of the next furnishing; each room served takes the next integer',
+             (0, 2**31 - 1), False),
+    'location_temperature': ('temperature of the location distribution (paper: 0.8)',
+                             (0.05, 5.0), False),
+    'max_objects': ('most objects in one room', (1, 100), False),
+    'device': ('torch device for the networks', DEVICES, False),
+    'weights_dir': ("directory of <room type>.pt bundles; '' = the shipped weights", None,
+                    False),
+    'frame_id': ('frame of the published markers, poses and of incoming polygons', None,
+                 False),
+    'marker_style': ('objects as boxes (cube) or catalog meshes (mesh)', MARKER_STYLES, False),
+    'auto_generate': ('furnish a room as soon as its layout arrives', None, False),
+    'wall_height': ('wall height of rooms arriving on ~/room_polygon (m)', (1.8, 6.0), False),
+    'export_dir': ("write every room served as JSON, SDF and glTF here; '' = off", None,
+                   False),
+    'mesh_dir': ("where catalog meshes for mesh markers are written; '' = user cache", None,
+                 True),
+    'torch_threads': ('CPU threads torch may use', (1, 64), True),
+}
+
+
+class ConfigError(ValueError):
+    """A parameter value that cannot be used, said in one sentence."""
+
+
+def check(name: str, value: Any) -> Any:
+    """``value`` for parameter ``name``, normalised, or ConfigError saying why not."""
+    if name not in PARAMETERS:
+        raise ConfigError(f'{name} is not a parameter of scene_synth_node')
+    limits = PARAMETERS[name][1]
+    default = getattr(ServerConfig, name)
+    if isinstance(default, bool):
+        if not isinstance(value, bool):
+            raise ConfigError(f'{name} must be true or false, got {value!r}')
+        return value
+    if isinstance(default, (int, float)):
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ConfigError(f'{name} must be a number, got {value!r}')
+        if isinstance(default, int) and not float(value).is_integer():
+            raise ConfigError(f'{name} must be an integer, got {value!r}')
+        if not math.isfinite(value) or not limits[0] <= value <= limits[1]:
+            raise ConfigError(f'{name} must be between {limits[0]} and {limits[1]}, '
+                              f'got {value!r}')
+        return type(default)(value)
+    if not isinstance(value, str):
+        raise ConfigError(f'{name} must be a string, got {value!r}')
+    if name == 'room_type':
+        try:
+            return resolve_room_type(value)
+        except KeyError:
+            raise ConfigError(f'room_type {value!r} is not one of {", ".join(ROOM_TYPES)}') \
+                from None
+    if isinstance(limits, tuple) and value not in limits:
+        raise ConfigError(f'{name} must be one of {", ".join(limits)}, got {value!r}')
+    if name == 'device':
+        try:
+            resolve_device(value)
+        except ValueError as e:
+            raise ConfigError(str(e)) from None
+    if name == 'frame_id' and (not value or any(c.isspace() for c in value)):
+        raise ConfigError(f'frame_id must be a non-empty name without spaces, got {value!r}')
+    if name in ('export_dir', 'mesh_dir') and value:
+        p = Path(value).expanduser()
+        try:
+            p.mkdir(parents=True, exist_ok=True)
+        except OSError as e:
+            raise ConfigError(f'{name} {value!r} cannot be created: {e.strerror}') from None
+        if not os.access(p, os.W_OK):
+            raise ConfigError(f'{name} {value!r} is not writable')
+    return value
+
+
+@dataclass
+class Served:
+    """A room handed to the publisher: the scene and how it came about."""
+
+    scene: Scene
+    source: str                          # 'layout', 'generate', 'next_object' or 'reset'
+    seed: int | None
+    added: list[PlacedObject] = field(default_factory=list)
+    seconds: float = 0.0
+    stopped: str = ''
+    timings: dict[str, float] = field(default_factory=dict)
+    json: str = ''                       # the scene as published on ~/scene
+
+
+@dataclass
+class Status:
+    """What /diagnostics reports."""
+
+    level: int = OK
+    message: str = 'waiting for a room layout'
+    last_error: str = ''
+    rooms_served: int = 0
+    inputs_rejected: int = 0
+    requests_superseded: int = 0
+    busy: bool = False
+    objects: int = 0
+    room_type: str = ''
+    seed: int | None = None
+    last_seconds: float = 0.0
+    timings: dict[str, float] = field(default_factory=dict)
+
+    def values(self) -> dict[str, str]:
+        """Key/value pairs for a DiagnosticStatus."""
+        out = {'rooms served': str(self.rooms_served),
+               'inputs rejected': str(self.inputs_rejected),
+               'requests superseded': str(self.requests_superseded),
+               'busy': str(self.busy).lower(),
+               'room type': self.room_type, 'objects': str(self.objects),
+               'seed': '' if self.seed is None else str(self.seed),
+               'last room seconds': f'{self.last_seconds:.3f}',
+               'last error': self.last_error}
+        for k in MODULES:
+            out[f'{k} ms'] = f'{1000 * self.timings.get(k, 0.0):.1f}'
+        return out
+
+
+@dataclass
+class _Job:
+    kind: str                             # 'layout', 'generate', 'next_object', 'reset'
+    epoch: int
+    scene: Scene | None = None
+    done: threading.Event = field(default_factory=threading.Event)
+    ok: bool = False
+    message: str = ''
+
+
+class SceneServer:
+    """The current room and the worker that furnishes it.
+
+    ``publish(served)`` is called from the worker thread with every complete room;
+    ``on_status(status)`` whenever the status changes. Construction loads and checks every
+    room type's weights and raises ``BundleError`` (naming the file) or ``ConfigError``.
+    """
+
+    def __init__(self, config: ServerConfig, publish: Callable[[Served], None],
+                 on_status: Callable[[Status], None] | None = None,
+                 log: Callable[[str, str], None] | None = None):
+        for f in fields(ServerConfig):
+            setattr(config, f.name, check(f.name, getattr(config, f.name)))
+        self.config = config
+        self._publish = publish
+        self._on_status = on_status or (lambda s: None)
+        self._log = log or (lambda level, text: None)
+        import torch
+        torch.set_num_threads(config.torch_threads)
+        self._synth = self._load(config.weights_dir, config.device)
+        self._lock = threading.Lock()
+        self._epoch = 0                    # bumped by every accepted layout
+        self._next_seed = config.seed
+        self._scene: Scene | None = None
+        self.status = Status()
+        self._queue: queue.Queue[_Job | None] = queue.Queue()
+        self._worker = threading.Thread(target=self._run, name='scene_synth_worker',
+                                        daemon=True)
+        self._worker.start()
+
+    # ---- set-up and parameters ------------------------------------------------------------
+    @staticmethod
+    def _load(weights_dir: str, device: str) -> Synthesizer:
+        synth = Synthesizer(Path(weights_dir).expanduser() if weights_dir else None,
+                            SynthConfig(device=device))
+        synth.load_all()                   # fail now, naming the file, not at the first room
+        return synth
+
+    def reconfigure(self, changes: dict[str, Any]) -> None:
+        """Apply parameter changes, all or none; ConfigError names the first bad one."""
+        checked = {name: check(name, value) for name, value in changes.items()}
+        for name in checked:
+            if PARAMETERS[name][2] and checked[name] != getattr(self.config, name):
+                raise ConfigError(f'{name} is read-only: set it when the node starts')
+        new = replace(self.config, **checked)
+        synth = None
+        if (new.weights_dir, new.device) != (self.config.weights_dir, self.config.device):
+            try:
+                synth = self._load(new.weights_dir, new.device)
+            except (BundleError, SynthesisError) as e:
+                raise ConfigError(f'weights_dir {new.weights_dir!r} cannot be used: {e}') \
+                    from None
+        with self._lock:
+            self.config = new
+            if synth is not None:
+                self._synth = synth
+            if 'seed' in checked:
+                self._next_seed = new.seed
+
+    # ---- requests (any thread) ------------------------------------------------------------
+    def submit_layout(self, payload: Any, source: str = 'room_layout') -> bool:
+        """Queue a room layout (JSON text or dict); False, with the reason on the status,
+        when it is rejected."""
+        try:
+            scene = parse_room_layout(payload)
+        except SceneValidationError as e:
+            self._reject(f'{source}: {e}')
+            return False
+        with self._lock:
+            self._epoch += 1
+            job = _Job('layout', self._epoch, scene)
+        self._queue.put(job)
+        return True
+
+    def submit_polygon(self, points, frame_id: str = '') -> bool:
+        """Queue a bare floor outline ((x, y[, z]) points) as a room of the configured type
+        and wall height, without doors or windows."""
+        cfg = self.config
+        if frame_id and frame_id != cfg.frame_id:
+            self._reject(f'room_polygon: the polygon is in frame {frame_id!r} but the node '
+                         f'works in {cfg.frame_id!r} (parameter frame_id)')
+            return False
+        layout = {'room_type': cfg.room_type, 'wall_height': cfg.wall_height,
+                  'floor': [[float(p[0]), float(p[1])] for p in points],
+                  'doors': [], 'windows': []}
+        return self.submit_layout(layout, 'room_polygon')
+
+    def request(self, kind: str, timeout: float = SERVICE_TIMEOUT) -> tuple[bool, str]:
+        """Run ``generate``, ``next_object`` or ``reset`` on the current room after what is
+        queued; returns (success, JSON text or reason)."""
+        if kind not in ('generate', 'next_object', 'reset'):
+            raise ValueError(f'unknown request {kind!r}')
+        with self._lock:
+            job = _Job(kind, self._epoch)
+        self._queue.put(job)
+        if not job.done.wait(timeout):
+            return False, f'{kind} did not finish within {timeout:.0f} s'
+        return job.ok, job.message
+
+    @property
+    def scene(self) -> Scene | None:
+        with self._lock:
+            return None if self._scene is None else self._scene.copy()
+
+    def close(self, timeout: float = 5.0) -> None:
+        """Stop the worker after cancelling what it is doing."""
+        with self._lock:
+            self._epoch += 1
+        self._queue.put(None)
+        self._worker.join(timeout)
+
+    # ---- the worker -----------------------------------------------------------------------
+    def _run(self) -> None:
+        while True:
+            job = self._queue.get()
+            if job is None:
+                return
+            try:
+                self._execute(job)
+            except Exception as e:   # a bug must not kill the worker: report it and go on
+                text = ' '.join(str(e).split()) or type(e).__name__
+                job.ok, job.message = False, f'internal error in {job.kind}: {text}'
+                self._set_status(level=ERROR, message=job.message, last_error=job.message)
+                self._log('error', job.message)
+            finally:
+                self._set_status(busy=False)
+                job.done.set()
+
+    def _stale(self, job: _Job) -> bool:
+        return job.epoch != self._epoch
+
+    def _execute(self, job: _Job) -> None:
+        if self._stale(job):
+            job.message = 'superseded by a newer room layout'
+            self._count_superseded(job)
+            return
+        with self._lock:
+            cfg, synth, current = self.config, self._synth, self._scene
+        if job.kind == 'layout':
+            base = job.scene
+        elif current is None:
+            job.message = ('no room yet: publish a layout on ~/room_layout or ~/room_polygon '
+                           'first')
+            return
+        else:
+            base = current
+        if job.kind == 'reset':
+            scene = Scene(base.room, [], dict(base.meta))
+            self._commit(job, Served(scene, 'reset', base.meta.get('seed')))
+            job.ok, job.message = True, '{"objects": 0}'
+            return
+        if job.kind == 'layout' and not cfg.auto_generate:
+            scene = base.copy()
+            scene.meta = {'generator': 'scene_synth_ros', 'seed': None}
+            self._commit(job, Served(scene, 'layout', None))
+            job.ok = True
+            return
+        synth.config = replace(synth.config, location_temperature=cfg.location_temperature,
+                               max_objects=cfg.max_objects)
+        seed = self._take_seed()
+        self._set_status(busy=True)
+        try:
+            if job.kind == 'next_object':
+                self._next_object(job, synth, base, seed)
+                return
+            start = Scene(base.room, []) if job.kind == 'generate' else base
+            result = synth.complete(start, seed, cancel=lambda: self._stale(job))
+        except SynthesisCancelled:
+            job.message = 'superseded by a newer room layout'
+            self._count_superseded(job)
+            return
+        except (SynthesisError, BundleError) as e:
+            self._reject(f'{"room_layout" if job.kind == "layout" else job.kind}: {e}')
+            job.message = str(e)
+            return
+        served = Served(result.scene, job.kind, seed, result.added, result.seconds,
+                        result.stopped, result.timings)
+        if self._commit(job, served):
+            job.ok = True
+            job.message = _json({'seed': seed, 'objects': len(result.scene),
+                                 'added': [o.id for o in result.added],
+                                 'stopped': result.stopped,
+                                 'seconds': round(result.seconds, 4)})
+
+    def _next_object(self, job: _Job, synth: Synthesizer, base: Scene, seed: int) -> None:
+        t0 = time.perf_counter()
+        try:
+            obj = synth.next_object(base, seed)
+        except (SynthesisError, BundleError) as e:
+            job.message = str(e)
+            return
+        if obj is None:
+            job.message = (f'nothing more fits: the room has {len(base)} objects'
+                           + (' (max_objects)' if len(base) >= synth.config.max_objects
+                              else ''))
+            return
+        scene = base.copy()
+        scene.objects.append(obj)
+        scene.meta.update({'generator': 'scene_synth_ros', 'seed': seed})
+        if self._commit(job, Served(scene, 'next_object', seed, [obj],
+                                   time.perf_counter() - t0)):
+            job.ok, job.message = True, _json(obj.to_dict())
+
+    def _take_seed(self) -> int:
+        with self._lock:
+            seed = self._next_seed
+            self._next_seed = (self._next_seed + 1) % 2**31
+        return seed
+
+    def _commit(self, job: _Job, served: Served) -> bool:
+        """Make ``served`` the current room and publish it, unless a newer layout came."""
+        served.json = dump_scene(served.scene)   # never publish what the schema would refuse
+        with self._lock:
+            stale = self._stale(job)
+            if not stale:
+                self._scene = served.scene
+        if stale:
+            job.message = 'superseded by a newer room layout'
+            self._count_superseded(job)
+            return False
+        self._publish(served)
+        self._set_status(level=OK, message=f'{served.source}: {len(served.scene)} objects '
+                         f'in a {served.scene.room.room_type}',
+                         increment='rooms_served', objects=len(served.scene),
+                         room_type=served.scene.room.room_type, seed=served.seed,
+                         last_seconds=served.seconds, timings=dict(served.timings))
+        if self.config.export_dir:
+            self._export(served, Path(self.config.export_dir).expanduser())
+        return True
+
+    def _export(self, served: Served, directory: Path) -> None:
+        """Write the room as JSON, SDF world and glTF; a failure is reported, not fatal."""
+        from .export import export_gltf, export_sdf
+        stem = f'room_{self.status.rooms_served:05d}'
+        try:
+            directory.mkdir(parents=True, exist_ok=True)
+            tmp = directory / f'{stem}.json.tmp'
+            tmp.write_text(served.json + '\n', encoding='utf-8')
+            os.replace(tmp, directory / f'{stem}.json')
+            export_sdf(served.scene, directory / f'{stem}.sdf', directory / 'meshes')
+            export_gltf(served.scene, directory / f'{stem}.glb')
+        except OSError as e:
+            text = f'export to {directory} failed: {e.strerror or e}'
+            self._log('warn', text)
+            self._set_status(level=WARN, message=text, last_error=text)
+
+    # ---- status ---------------------------------------------------------------------------
+    def _reject(self, sentence: str) -> None:
+        self._log('warn', sentence)
+        self._set_status(level=WARN, message=f'input rejected: {sentence}',
+                         last_error=sentence, increment='inputs_rejected')
+
+    def _count_superseded(self, job: _Job) -> None:
+        self._set_status(increment='requests_superseded')
+
+    def _set_status(self, increment: str | None = None, **changes) -> None:
+        with self._lock:
+            if increment:
+                changes[increment] = getattr(self.status, increment) + 1
+            self.status = replace(self.status, **changes)
+            status = self.status
+        self._on_status(status)
+
+
+def _json(d: dict) -> str:
+    import json
+    return json.dumps(d, separators=(', ', ': '), allow_nan=False)
