@@ -1,0 +1,185 @@
+"""RViz markers of a furnished room as plain dataclasses, without any ROS import.
+
+The ROS node copies each ``MarkerSpec`` field into a ``visualization_msgs/Marker``; keeping
+the geometry here lets it be tested without a ROS installation. Units and frames follow
+REP-103 and ``scene.py``: metres, z up, yaw about +z, an object's front along its local +x.
+Colours come from ``plot`` so that RViz and the top-down PNGs agree.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+import hashlib
+import math
+import os
+from pathlib import Path
+import re
+import shutil
+import tempfile
+import threading
+
+from matplotlib.colors import to_rgba
+import shapely
+
+from . import plot
+from .export import WALL_THICKNESS, wall_boxes
+from .meshes import export_model, variant_for
+from .scene import Opening, PlacedObject, Room, Scene
+
+MARKER_STYLES = ('cube', 'mesh')
+MARKER_KINDS = ('cube', 'mesh', 'text', 'triangle_list')
+
+Vec3 = tuple[float, float, float]
+RGBA = tuple[float, float, float, float]
+
+OPENING_THICKNESS = 0.04   # m: thin enough to read as a panel inside the wall's gap
+LABEL_HEIGHT = 0.15        # m: text height, and the gap between an object's top and its label
+
+
+def _floats(values, n: int, what: str) -> tuple[float, ...]:
+    # numpy scalars leak out of shapely/numpy maths; ROS message fields want plain floats.
+    out = tuple(float(v) for v in values)
+    if len(out) != n or not all(math.isfinite(v) for v in out):
+        raise ValueError(f'marker {what} must be {n} finite numbers, got {out}')
+    return out
+
+
+@dataclass(frozen=True)
+class MarkerSpec:
+    """One RViz marker, field for field what ``visualization_msgs/Marker`` needs."""
+
+    ns: str
+    id: int
+    kind: str
+    position: Vec3
+    yaw: float
+    scale: Vec3
+    color: RGBA
+    text: str = ''
+    mesh_resource: str = ''
+    points: tuple[Vec3, ...] = ()
+
+    def __post_init__(self):
+        if self.kind not in MARKER_KINDS:
+            raise ValueError(f'marker kind must be one of {", ".join(MARKER_KINDS)}, '
+                             f'got {self.kind!r}')
+        set_ = object.__setattr__
+        set_(self, 'id', int(self.id))
+        set_(self, 'position', _floats(self.position, 3, 'position'))
+        set_(self, 'yaw', _floats([self.yaw], 1, 'yaw')[0])
+        set_(self, 'scale', _floats(self.scale, 3, 'scale'))
+        set_(self, 'color', _floats(self.color, 4, 'color'))
+        set_(self, 'points', tuple(_floats(p, 3, 'point') for p in self.points))
+
+
+def category_color(category: str) -> RGBA:
+    """The RGBA colour of a category, the same as in the top-down pictures."""
+    return _floats(plot.category_color(category), 4, 'color')
+
+
+FLOOR_RGBA = _floats(to_rgba(plot.FLOOR_COLOR), 4, 'color')
+WALL_RGBA = _floats(to_rgba(plot.WALL_COLOR), 4, 'color')
+DOOR_RGBA = _floats(to_rgba(plot.DOOR_COLOR, 0.6), 4, 'color')
+WINDOW_RGBA = _floats(to_rgba(plot.WINDOW_GLASS_COLOR, 0.4), 4, 'color')
+LABEL_RGBA = (1.0, 1.0, 1.0, 1.0)
+
+
+def _safe_name(model_id: str) -> str:
+    stem = re.sub(r'[^A-Za-z0-9_-]', '_', model_id)
+    if stem != model_id:
+        # Different ids can sanitise to the same stem ('a@1.5' and 'a_1_5'); a digest of the
+        # real id keeps their files apart.
+        stem += '_' + hashlib.sha1(model_id.encode()).hexdigest()[:8]
+    return stem
+
+
+class MeshCache:
+    """Writes catalog meshes as OBJ (+.mtl) files on first use into a directory and returns
+    file:// URIs."""
+
+    def __init__(self, directory: str | Path):
+        self.directory = Path(directory).resolve()
+        self._uris: dict[str, str] = {}
+        self._lock = threading.Lock()
+
+    def uri(self, obj: PlacedObject) -> str:
+        """The file:// URI of the OBJ file showing ``obj`` (its variant at its size)."""
+        variant = variant_for(obj)
+        with self._lock:
+            if variant.model_id not in self._uris:
+                path = self.directory / f'{_safe_name(variant.model_id)}.obj'
+                if not (path.exists() and path.with_suffix('.mtl').exists()):
+                    self._write(variant, path)
+                self._uris[variant.model_id] = path.as_uri()
+            return self._uris[variant.model_id]
+
+    @staticmethod
+    def _write(variant, path: Path) -> None:
+        # The OBJ names its .mtl by file name, so both are written under their final names
+        # in a private temporary directory and then moved in; the .mtl goes first so that
+        # a reader (another process sharing the directory) never sees an OBJ without it.
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(prefix='.tmp-', dir=path.parent))
+        try:
+            export_model(variant, tmp / path.name)
+            os.replace(tmp / path.with_suffix('.mtl').name, path.with_suffix('.mtl'))
+            os.replace(tmp / path.name, path)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _floor_marker(room: Room) -> MarkerSpec:
+    points = []
+    for tri in shapely.constrained_delaunay_triangles(room.polygon).geoms:
+        (ax, ay), (bx, by), (cx, cy) = list(tri.exterior.coords)[:3]
+        corners = [(ax, ay, 0.0), (bx, by, 0.0), (cx, cy, 0.0)]
+        if (bx - ax) * (cy - ay) - (by - ay) * (cx - ax) < 0:
+            corners.reverse()   # counter-clockwise from above, so the face is lit from above
+        points += corners
+    return MarkerSpec('floor', 0, 'triangle_list', (0.0, 0.0, 0.0), 0.0, (1.0, 1.0, 1.0),
+                      FLOOR_RGBA, points=tuple(points))
+
+
+def _opening_marker(room: Room, op: Opening, ns: str, k: int, color: RGBA) -> MarkerSpec:
+    wall = room.wall_of(op)
+    if wall is None:
+        raise ValueError(f'the {op.kind} at {op.position} is not on any wall of the room')
+    # In the middle of the wall's thickness: export.wall_boxes stands walls outside the floor.
+    x, y = wall.point_at(wall.offset_of(op.position)) - wall.normal * WALL_THICKNESS / 2
+    yaw = math.atan2(wall.direction[1], wall.direction[0])
+    return MarkerSpec(ns, k, 'cube', (x, y, op.sill + op.height / 2), yaw,
+                      (op.width, OPENING_THICKNESS, op.height), color)
+
+
+def scene_markers(scene: Scene, style: str = 'cube',
+                  meshes: MeshCache | None = None) -> list[MarkerSpec]:
+    """The markers of a room and its objects: floor, walls, doors, windows, one marker per
+    object (a box, or its catalog mesh with ``style='mesh'``) and one label per object."""
+    if style not in MARKER_STYLES:
+        raise ValueError(f'unknown marker style {style!r}; use one of '
+                         f'{", ".join(MARKER_STYLES)}')
+    if style == 'mesh' and meshes is None:
+        raise ValueError("marker style 'mesh' needs a MeshCache to write the mesh files to")
+    room = scene.room
+    out = [_floor_marker(room)]
+    out += [MarkerSpec('walls', k, 'cube', b.centre, b.yaw, b.size, WALL_RGBA)
+            for k, b in enumerate(wall_boxes(room))]
+    out += [_opening_marker(room, d, 'doors', k, DOOR_RGBA) for k, d in enumerate(room.doors)]
+    out += [_opening_marker(room, w, 'windows', k, WINDOW_RGBA)
+            for k, w in enumerate(room.windows)]
+    seen: dict[str, int] = {}
+    for obj in scene.objects:
+        k = seen[obj.category] = seen.get(obj.category, -1) + 1
+        x, y, z = obj.position
+        if style == 'cube':
+            out.append(MarkerSpec(obj.category, k, 'cube', (x, y, z + obj.height / 2), obj.yaw,
+                                  (obj.depth, obj.width, obj.height),
+                                  category_color(obj.category)))
+        else:
+            # Catalog meshes have their origin at the bottom centre, so the pose is the base.
+            out.append(MarkerSpec(obj.category, k, 'mesh', (x, y, z), obj.yaw, (1.0, 1.0, 1.0),
+                                  category_color(obj.category),
+                                  mesh_resource=meshes.uri(obj)))
+    out += [MarkerSpec('labels', i, 'text', (o.position[0], o.position[1], o.top + LABEL_HEIGHT),
+                       0.0, (0.0, 0.0, LABEL_HEIGHT), LABEL_RGBA, text=f'{o.id}')
+            for i, o in enumerate(scene.objects)]
+    return out
