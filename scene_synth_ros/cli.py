@@ -572,4 +572,7 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == '__main__':
-    sys.exit(main())
+    # Through the package's module, so ``python -m`` and the console script share one
+    # UserError class with the subcommand modules that import it.
+    from scene_synth_ros.cli import main as _main
+    sys.exit(_main())

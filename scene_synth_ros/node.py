@@ -12,7 +12,9 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+import signal
 import sys
+import threading
 
 import rclpy
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
@@ -21,6 +23,7 @@ from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.signals import SignalHandlerOptions
 from rcl_interfaces.msg import (FloatingPointRange, IntegerRange, ParameterDescriptor,
                                 SetParametersResult)
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
@@ -191,14 +194,22 @@ class SceneSynthNode(Node):
 
 
 def main(args: list[str] | None = None) -> int:
-    rclpy.init(args=args)
+    # SIGINT and SIGTERM only raise a flag that the spin loop checks: letting rclpy's own
+    # handlers shut the context down under a multi-threaded executor races with its wait set.
+    stop = threading.Event()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, lambda *_: stop.set())
+    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     node = None
     code = 0
     try:
         node = SceneSynthNode()
         executor = MultiThreadedExecutor(num_threads=4)
         executor.add_node(node)
-        executor.spin()
+        while not stop.is_set() and rclpy.ok():
+            executor.spin_once(timeout_sec=0.2)
+        node.get_logger().info('shutting down')
+        executor.shutdown(timeout_sec=5.0)
     except StartupError as e:
         print(f'{NODE_NAME}: cannot start: {e}', file=sys.stderr)
         code = EXIT_STARTUP_FAILED

@@ -160,6 +160,9 @@ def cmd_param(args) -> int:
         value = yaml.safe_load(args.value)
         if value is None:
             value = ''
+        current = _guard(lambda: client.get_parameters([args.name], args.timeout))
+        if isinstance(current[args.name], float) and type(value) is int:
+            value = float(value)        # `param set location_temperature 1` means 1.0
         refused = _guard(lambda: client.set_parameters({args.name: value}, args.timeout))
     if refused:
         raise UserError(f'the node refused {refused[0]}')

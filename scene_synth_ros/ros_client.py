@@ -113,6 +113,18 @@ class SceneSynthClient:
         """How many messages arrived on ``topic`` so far."""
         return self._counts[topic]
 
+    def counts(self) -> dict[str, int]:
+        """Messages received so far per topic, to wait for newer ones with ``wait_room``."""
+        return dict(self._counts)
+
+    def wait_room(self, after: dict[str, int], timeout: float = 60.0):
+        """(scene dict, MarkerArray, PoseArray) of a room published after ``after``
+        (from ``counts``): waits for all three topics."""
+        self.spin_until(lambda: all(self._counts[t] > after[t] for t in TOPICS), timeout,
+                        'room (scene, markers and poses)')
+        return (json.loads(self.received['scene'][-1][2].data),
+                self.received['markers'][-1][2], self.received['poses'][-1][2])
+
     def latest(self, topic: str, timeout: float = 5.0):
         """The latest message on ``topic`` (scene, markers, poses, diagnostics)."""
         return self.spin_until(lambda: self.received[topic] and self.received[topic][-1][2],

@@ -405,12 +405,12 @@ class SceneServer:
             job.message = 'superseded by a newer room layout'
             self._count_superseded(job)
             return False
-        self._publish(served)
         self._set_status(level=OK, message=f'{served.source}: {len(served.scene)} objects '
                          f'in a {served.scene.room.room_type}',
                          increment='rooms_served', objects=len(served.scene),
                          room_type=served.scene.room.room_type, seed=served.seed,
                          last_seconds=served.seconds, timings=dict(served.timings))
+        self._publish(served)
         if self.config.export_dir:
             self._export(served, Path(self.config.export_dir).expanduser())
         return True

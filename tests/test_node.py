@@ -1,0 +1,331 @@
+"""scene_synth_node in a child process, talked to over Fast DDS on loopback with real rclpy.
+
+Every node gets a ROS domain of its own, so tests (and test runs) do not hear each other.
+"""
+from __future__ import annotations
+
+import itertools
+import json
+import math
+import os
+from pathlib import Path
+import random
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from urllib.parse import urlparse
+from xml.etree import ElementTree as ET
+
+import pytest
+
+os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'   # before any rclpy.init
+
+from scene_synth_ros.paths import examples_dir, weights_dir  # noqa: E402
+from scene_synth_ros.ros_client import (SceneSynthClient, node_command, node_env,  # noqa: E402
+                                        start_node, stop_node)
+from scene_synth_ros.schema import parse_room_layout, parse_scene  # noqa: E402
+
+LAYOUT = (examples_dir() / 'bedroom_layout.json').read_text()
+L_LAYOUT = (examples_dir() / 'lshaped_living_layout.json').read_text()
+# Domains 1..232 are valid for Fast DDS; a random start keeps two concurrent runs apart.
+_DOMAINS = itertools.count(random.Random().randrange(1, 150))
+MARKER_CUBE, MARKER_MESH = 1, 10
+
+
+def _domain() -> int:
+    return next(_DOMAINS)
+
+
+class RunningNode:
+    def __init__(self, tmp: Path, params=None):
+        self.domain = _domain()
+        self.log_path = tmp / f'node_{self.domain}.log'
+        self._log = open(self.log_path, 'w')
+        self.proc = start_node(self.domain, params, self._log)
+        self.client = SceneSynthClient(domain_id=self.domain, handle_signals=False)
+        try:
+            self.client.spin_until(lambda: self.proc.poll() is not None or self.client.ready(),
+                                   90.0, 'services')
+        except Exception:
+            self.stop()
+            raise
+        assert self.proc.poll() is None, self.log()
+
+    def log(self) -> str:
+        if not self._log.closed:
+            self._log.flush()
+        return self.log_path.read_text()
+
+    def stop(self, sig=signal.SIGINT) -> int:
+        code = stop_node(self.proc, sig)
+        self.client.close()
+        self._log.close()
+        return code
+
+
+@pytest.fixture(scope='module')
+def node(tmp_path_factory):
+    n = RunningNode(tmp_path_factory.mktemp('node'),
+                    {'mesh_dir': str(tmp_path_factory.mktemp('meshes')), 'torch_threads': 1})
+    yield n
+    code = n.stop()
+    assert code == 0, n.log()
+    assert 'Traceback' not in n.log()
+
+
+def _furnish(node, layout=LAYOUT) -> dict:
+    return node.client.publish_layout(layout, timeout=60.0)
+
+
+def _yaw(q) -> float:
+    return 2 * math.atan2(q.z, q.w)
+
+
+def _objects_agree(scene_d, markers, poses, frame='map'):
+    scene = parse_scene(scene_d)                         # valid against msg_schemas/
+    assert markers.markers[0].action == markers.markers[0].DELETEALL
+    objs = [m for m in markers.markers[1:]
+            if m.ns not in ('floor', 'walls', 'doors', 'windows', 'labels')]
+    assert [m.ns for m in objs] == [o.category for o in scene.objects]
+    labels = [m for m in markers.markers if m.ns == 'labels']
+    assert [m.text for m in labels] == [o.id for o in scene.objects]
+    room_ns = {'floor', 'walls'} | ({'doors'} if scene.room.doors else set()) | (
+        {'windows'} if scene.room.windows else set())
+    assert {m.ns for m in markers.markers[1:]} >= room_ns
+    assert len(poses.poses) == len(scene)
+    assert poses.header.frame_id == frame
+    assert all(m.header.frame_id == frame for m in markers.markers)
+    for o, m, p in zip(scene.objects, objs, poses.poses):
+        assert (p.position.x, p.position.y, p.position.z) == pytest.approx(o.position)
+        assert math.cos(_yaw(p.orientation) - o.yaw) == pytest.approx(1.0)
+        assert m.pose.position.x == pytest.approx(o.position[0])
+        assert m.pose.position.y == pytest.approx(o.position[1])
+        if m.type == MARKER_CUBE:
+            assert (m.scale.x, m.scale.y, m.scale.z) == pytest.approx(
+                (o.depth, o.width, o.height))
+            assert m.pose.position.z == pytest.approx(o.position[2] + o.height / 2)
+    return scene
+
+
+def test_a_layout_gives_markers_poses_and_scene_that_agree(node):
+    before = node.client.counts()
+    node.client.publish_layout(LAYOUT, wait=False)
+    d, markers, poses = node.client.wait_room(before)
+    scene = _objects_agree(d, markers, poses)
+    assert scene.room == parse_room_layout(LAYOUT).room
+    assert isinstance(scene.meta['seed'], int) and len(scene) > 0
+    diag = node.client.spin_until(
+        lambda: (d := node.client.diagnostics()) and int(d['rooms served']) >= 1 and d, 5.0,
+        'diagnostics of the room')
+    assert diag['level'] == '0' and float(diag['location ms']) > 0
+
+
+def test_a_late_subscriber_receives_the_last_room(node):
+    d = _furnish(node, L_LAYOUT)
+    with SceneSynthClient(domain_id=node.domain, handle_signals=False) as late:
+        scene = json.loads(late.latest('scene', timeout=10.0).data)
+        markers = late.latest('markers', timeout=10.0)
+        poses = late.latest('poses', timeout=10.0)
+    assert scene == d
+    _objects_agree(scene, markers, poses)
+
+
+def test_services_reset_next_object_and_generate(node):
+    first = _furnish(node)
+    client = node.client
+    n = client.count('scene')
+    ok, message = client.call('reset')
+    assert ok and json.loads(message) == {'objects': 0}
+    assert client.wait_scene(n)['objects'] == []
+
+    n = client.count('scene')
+    t0 = time.perf_counter()
+    ok, message = client.call('next_object')
+    assert ok, message
+    obj = json.loads(message)
+    scene = client.wait_scene(n)
+    assert [o['id'] for o in scene['objects']] == [obj['id']]
+    assert scene['objects'][0] == obj
+    assert time.perf_counter() - t0 < 30
+
+    before = client.counts()
+    ok, message = client.call('generate')
+    assert ok, message
+    summary = json.loads(message)
+    scene, markers, poses = client.wait_room(before)
+    assert len(scene['objects']) == summary['objects']
+    assert summary['seed'] == scene['meta']['seed'] != first['meta']['seed']
+    _objects_agree(scene, markers, poses)
+
+
+BAD_LAYOUTS = {
+    'does not parse': ('{"room_type": "bedroom", "floor": [[0, 0]', 'JSON'),
+    'breaks the schema': (json.dumps({'room_type': 'bedroom', 'wall_height': 2.5}), 'floor'),
+    'self-intersecting': (json.dumps({'room_type': 'bedroom', 'floor': [[0, 0], [4, 4], [4, 0],
+                                                                        [0, 4]]}),
+                          'self-intersecting'),
+    'NaN': (LAYOUT.replace('"wall_height": 2.6', '"wall_height": NaN'), 'wall_height'),
+    'too small': (json.dumps({'room_type': 'bathroom', 'floor': [[0, 0], [0.6, 0], [0.6, 0.6],
+                                                                 [0, 0.6]]}), 'm²'),
+    'unknown room type': (LAYOUT.replace('"bedroom"', '"garage"'), 'garage'),
+}
+
+
+def test_bad_input_is_rejected_in_one_sentence_and_the_node_keeps_serving(node):
+    before = _furnish(node)
+    client = node.client
+    rejected = int(client.diagnostics()['inputs rejected'])
+    scenes = client.count('scene')
+    bad = [(what, lambda t=text: client.publish_layout(t, wait=False, check=False), needle)
+           for what, (text, needle) in BAD_LAYOUTS.items()]
+    bad += [('degenerate polygon', lambda: client.publish_polygon([(0, 0), (3, 0)]),
+             'at least 3'),
+            ('polygon with NaN', lambda: client.publish_polygon([(0, 0), (3, 0), (3, math.nan)]),
+             'finite'),
+            ('polygon in another frame',
+             lambda: client.publish_polygon([(0, 0), (3, 0), (3, 3)], 'odom'), 'odom')]
+    for what, send, needle in bad:
+        send()
+        rejected += 1
+        diag = client.spin_until(
+            lambda: (d := client.diagnostics()) and int(d['inputs rejected']) >= rejected and d,
+            15.0, f'rejection of the layout that {what}')
+        assert diag['level'] == '1', what
+        assert needle in diag['last error'] and '\n' not in diag['last error'], \
+            (what, diag['last error'])
+        assert diag['message'].startswith('input rejected: '), what
+    time.sleep(0.3)
+    assert client.count('scene') == scenes                    # nothing was published for them
+    assert json.loads(client.latest('scene').data) == before  # the previous room stays
+    assert node.proc.poll() is None
+    ok, message = client.call('next_object')
+    assert ok or 'nothing more fits' in message
+    assert node.log().count('[WARN]') >= len(bad)
+
+
+def test_parameters_change_at_run_time_and_bad_values_are_refused(node, tmp_path):
+    client = node.client
+    refused = client.set_parameters({'location_temperature': -1.0})
+    assert refused and 'location_temperature' in refused[0]
+    refused = client.set_parameters({'room_type': 'garage'})
+    assert refused and 'garage' in refused[0]
+    refused = client.set_parameters({'torch_threads': 2})
+    assert refused
+    refused = client.set_parameters({'weights_dir': str(tmp_path)})
+    assert refused and 'no such weights file' in refused[0]
+    assert client.get_parameters(['location_temperature', 'room_type']) == {
+        'location_temperature': 0.8, 'room_type': 'bedroom'}
+
+    assert client.set_parameters({'marker_style': 'mesh', 'frame_id': 'odom',
+                                  'room_type': 'office', 'wall_height': 3.1,
+                                  'export_dir': str(tmp_path / 'export')}) == []
+    try:
+        before = client.counts()
+        client.publish_polygon([(0, 0), (4, 0), (4, 3.5), (0, 3.5)], 'odom')
+        d, markers, poses = client.wait_room(before)
+        scene = _objects_agree(d, markers, poses, frame='odom')
+        assert scene.room.room_type == 'office' and scene.room.wall_height == 3.1
+        assert scene.room.doors == () and scene.room.windows == ()
+        meshes = [m for m in markers.markers if m.type == MARKER_MESH]
+        assert len(meshes) == len(scene) > 0
+        assert all(Path(urlparse(m.mesh_resource).path).is_file() for m in meshes)
+        client.call('reset')            # queued behind the export of the office
+        sdf = sorted((tmp_path / 'export').glob('room_*.sdf'))[0]
+        world = ET.parse(sdf).getroot().find('world')
+        ids = {o.id for o in scene.objects}
+        assert {m.get('name') for m in world.findall('model')} >= ids
+    finally:
+        assert client.set_parameters({'marker_style': 'cube', 'frame_id': 'map',
+                                      'room_type': 'bedroom', 'wall_height': 2.6,
+                                      'export_dir': ''}) == []
+
+
+def test_a_new_layout_supersedes_the_one_being_furnished(node):
+    client = node.client
+    superseded = int(client.diagnostics()['requests superseded'])
+    layouts = []
+    for k in range(4):
+        d = json.loads(LAYOUT)
+        d['floor'] = [[x + k, y] for x, y in d['floor']]
+        for op in d['doors'] + d['windows']:
+            op['position'][0] += k
+        layouts.append(json.dumps(d))
+    n = client.count('scene')
+    for text in layouts:
+        client.publish_layout(text, wait=False)
+    last = client.wait_scene(n, room=parse_room_layout(layouts[-1]).room)
+    assert len(last['objects']) > 0
+    ok, _ = client.call('reset')
+    published = client.count('scene') - n
+    assert published < len(layouts) + 1
+    diag = client.diagnostics()
+    assert int(diag['requests superseded']) >= superseded + len(layouts) + 1 - published
+
+
+def test_command_line_clients(node, tmp_path):
+    env = node_env(node.domain)
+    cli = [sys.executable, '-m', 'scene_synth_ros.cli', 'ros', '--timeout', '30']
+
+    def run(*args):
+        return subprocess.run(cli + list(args), env=env, capture_output=True, text=True,
+                              timeout=120)
+
+    r = run('publish-layout', str(examples_dir() / 'bedroom_layout.json'), '--out',
+            str(tmp_path / 'room.json'))
+    assert r.returncode == 0, r.stderr
+    assert 'bedroom, 15.1 m²' in r.stdout
+    scene = parse_scene((tmp_path / 'room.json').read_text())
+    r = run('echo', 'poses')
+    assert r.returncode == 0 and f'{len(scene)} poses' in r.stdout, r.stderr
+    r = run('next-object')
+    assert r.returncode == 0 or 'nothing more fits' in r.stderr, r.stderr
+    r = run('param', 'set', 'location_temperature', '-2')
+    assert r.returncode == 2 and 'location_temperature' in r.stderr
+    r = run('param', 'set', 'location_temperature', '1')
+    assert r.returncode == 0, r.stderr
+    r = run('param', 'get', 'location_temperature')
+    assert r.returncode == 0 and 'location_temperature: 1.0' in r.stdout
+    assert node.client.set_parameters({'location_temperature': 0.8}) == []
+    bad = tmp_path / 'bad.json'
+    bad.write_text('{"room_type": "bedroom"}')
+    r = run('publish-layout', str(bad))
+    assert r.returncode == 2 and 'floor' in r.stderr and r.stderr.count('\n') == 1
+
+
+def test_requests_without_a_room_and_sigterm(tmp_path):
+    n = RunningNode(tmp_path)
+    try:
+        ok, message = n.client.call('next_object')
+        assert not ok and 'no room yet' in message
+        ok, message = n.client.call('generate')
+        assert not ok and 'no room yet' in message
+    finally:
+        code = n.stop(signal.SIGTERM)
+    assert code == 0, n.log()
+    assert 'Traceback' not in n.log()
+
+
+def _start_and_wait(tmp_path, params) -> subprocess.CompletedProcess:
+    return subprocess.run(node_command(params), env=node_env(_domain()), capture_output=True,
+                          text=True, timeout=120)
+
+
+def test_missing_or_corrupt_weights_stop_the_node_naming_the_file(tmp_path):
+    shutil.copy(weights_dir() / 'bedroom.pt', tmp_path / 'bedroom.pt')
+    r = _start_and_wait(tmp_path, {'weights_dir': str(tmp_path)})
+    assert r.returncode == 1
+    assert 'living.pt: no such weights file' in r.stderr and 'Traceback' not in r.stderr
+    for rt in ('living', 'office', 'bathroom'):
+        shutil.copy(weights_dir() / f'{rt}.pt', tmp_path / f'{rt}.pt')
+    (tmp_path / 'office.pt').write_bytes(b'not a bundle')
+    r = _start_and_wait(tmp_path, {'weights_dir': str(tmp_path)})
+    assert r.returncode == 1
+    assert 'office.pt' in r.stderr and 'Traceback' not in r.stderr
+
+
+def test_a_bad_start_up_parameter_stops_the_node_in_one_sentence(tmp_path):
+    r = _start_and_wait(tmp_path, {'location_temperature': -3.0})
+    assert r.returncode == 1 and 'location_temperature' in r.stderr
+    assert 'Traceback' not in r.stderr

@@ -1,0 +1,221 @@
+"""SceneServer: the node's behaviour without ROS, with the shipped weights."""
+from __future__ import annotations
+
+import json
+import threading
+
+import pytest
+
+from scene_synth_ros.models.bundle import BundleError
+from scene_synth_ros.paths import examples_dir, weights_dir
+from scene_synth_ros.schema import parse_room_layout, parse_scene
+from scene_synth_ros.server import (ERROR, OK, WARN, ConfigError, SceneServer, ServerConfig,
+                                    check)
+
+LAYOUT = (examples_dir() / 'bedroom_layout.json').read_text()
+PARTIAL = (examples_dir() / 'partial_bedroom.json').read_text()
+
+
+class Recorder:
+    """Collects what the server hands out, and lets a test wait for it."""
+
+    def __init__(self):
+        self.served = []
+        self.statuses = []
+        self.logs = []
+        self.cond = threading.Condition()
+
+    def publish(self, served):
+        with self.cond:
+            self.served.append(served)
+            self.cond.notify_all()
+
+    def status(self, status):
+        self.statuses.append(status)
+
+    def log(self, level, text):
+        self.logs.append((level, text))
+
+    def wait(self, n, timeout=60.0):
+        with self.cond:
+            assert self.cond.wait_for(lambda: len(self.served) >= n, timeout), \
+                f'only {len(self.served)} rooms served, waited for {n}'
+        return self.served[n - 1]
+
+
+@pytest.fixture
+def server():
+    rec = Recorder()
+    srv = SceneServer(ServerConfig(torch_threads=1), rec.publish, rec.status, rec.log)
+    srv.rec = rec
+    yield srv
+    srv.close()
+
+
+def test_layout_is_furnished_and_published_as_valid_json(server):
+    assert server.submit_layout(LAYOUT)
+    served = server.rec.wait(1)
+    assert served.source == 'layout' and served.seed == 0
+    scene = parse_scene(served.json)
+    assert scene.room.room_type == 'bedroom' and len(scene) == len(served.added) > 0
+    assert scene.meta['seed'] == 0
+    assert server.scene.to_dict() == scene.to_dict()
+    assert server.status.level == OK and server.status.rooms_served == 1
+    assert server.status.timings['location'] > 0
+
+
+def test_requests_before_any_room_are_refused_with_a_reason(server):
+    for kind in ('next_object', 'generate', 'reset'):
+        ok, message = server.request(kind)
+        assert not ok and 'no room yet' in message
+    assert server.rec.served == []
+
+
+def test_services_change_the_current_room(server):
+    server.submit_layout(PARTIAL)
+    first = server.rec.wait(1)
+    kept = [o.id for o in parse_room_layout(PARTIAL).objects]
+    assert [o.id for o in first.scene.objects][:2] == kept      # a partial room is completed
+
+    ok, message = server.request('reset')
+    assert ok and len(server.rec.wait(2).scene) == 0
+
+    ok, message = server.request('next_object')
+    assert ok
+    obj = json.loads(message)
+    third = server.rec.wait(3)
+    assert [o.id for o in third.scene.objects] == [obj['id']] and third.source == 'next_object'
+
+    ok, message = server.request('generate')
+    assert ok
+    summary = json.loads(message)
+    fourth = server.rec.wait(4)
+    assert summary['objects'] == len(fourth.scene) and summary['seed'] == fourth.seed
+    assert fourth.seed == third.seed + 1 == first.seed + 2     # every furnishing a new seed
+
+
+def test_bad_layouts_are_rejected_in_one_sentence_and_the_room_stays(server):
+    server.submit_layout(LAYOUT)
+    server.rec.wait(1)
+    before = server.scene.to_dict()
+    bad = {
+        'not json': '{"room_type": "bedroom", ',
+        'schema': json.dumps({'room_type': 'bedroom'}),
+        'self-intersecting': json.dumps({'room_type': 'bedroom', 'floor': [[0, 0], [4, 4],
+                                                                           [4, 0], [0, 4]]}),
+        'NaN': LAYOUT.replace('4.2, 0.0', 'NaN, 0.0', 1),
+        'too small': json.dumps({'room_type': 'bedroom', 'floor': [[0, 0], [0.5, 0],
+                                                                   [0.5, 0.5], [0, 0.5]]}),
+        'unknown room type': LAYOUT.replace('"bedroom"', '"kitchen"'),
+    }
+    for n, (what, text) in enumerate(bad.items(), start=1):
+        assert not server.submit_layout(text), what
+        sentence = server.status.last_error
+        assert server.status.level == WARN and server.status.inputs_rejected == n
+        assert sentence.startswith('room_layout: ') and '\n' not in sentence, what
+    assert not server.submit_polygon([(0, 0, 0), (1, 0, 0)])
+    assert 'room_polygon' in server.status.last_error
+    assert not server.submit_polygon([(0, 0, 0), (4, 0, 0), (4, 3, 0)], frame_id='odom')
+    assert "'odom'" in server.status.last_error
+    assert len(server.rec.served) == 1 and server.scene.to_dict() == before
+    ok, _ = server.request('next_object')                    # and it keeps serving
+    assert ok
+
+
+def test_a_new_layout_supersedes_queued_and_running_ones(server):
+    layouts = []
+    for k in range(5):
+        d = json.loads(LAYOUT)
+        d['floor'] = [[x + k, y] for x, y in d['floor']]
+        d['doors'][0]['position'][0] += k
+        d['windows'][0]['position'][0] += k
+        layouts.append(d)
+    for d in layouts:
+        assert server.submit_layout(d)
+    last = parse_scene(json.dumps({'room': layouts[-1]})).room
+    served = server.rec.wait(1)
+    server.request('reset')           # queued after the layouts: once done, all were handled
+    rooms = [s.scene.room for s in server.rec.served if s.source == 'layout']
+    assert rooms[-1] == last
+    assert len(rooms) < 5 and server.status.requests_superseded >= 5 - len(rooms)
+    assert served.scene.room in [parse_scene(json.dumps({'room': d})).room for d in layouts]
+
+
+def test_parameters_are_checked_and_applied(server):
+    with pytest.raises(ConfigError, match='location_temperature must be between'):
+        server.reconfigure({'location_temperature': -1.0})
+    with pytest.raises(ConfigError, match='room_type'):
+        server.reconfigure({'room_type': 'kitchen'})
+    with pytest.raises(ConfigError, match='read-only'):
+        server.reconfigure({'torch_threads': 2})
+    with pytest.raises(ConfigError, match='marker_style must be one of cube, mesh'):
+        server.reconfigure({'marker_style': 'sphere'})
+    with pytest.raises(ConfigError, match='weights_dir'):
+        server.reconfigure({'weights_dir': '/nonexistent/weights'})
+    assert server.config.location_temperature == 0.8          # all or none
+    server.reconfigure({'room_type': 'office', 'wall_height': 3.0, 'max_objects': 1,
+                        'seed': 40, 'auto_generate': True})
+    assert server.submit_polygon([(0, 0, 0), (4, 0, 0), (4, 3, 0), (0, 3, 0)], 'map')
+    served = server.rec.wait(1)
+    assert served.scene.room.room_type == 'office' and served.scene.room.wall_height == 3.0
+    assert served.seed == 40 and len(served.scene) <= 1
+
+
+def test_auto_generate_off_publishes_the_room_as_given(server):
+    server.reconfigure({'auto_generate': False})
+    server.submit_layout(PARTIAL)
+    served = server.rec.wait(1)
+    assert len(served.scene) == 2 and served.added == []
+
+
+def test_export_dir_gets_json_sdf_and_gltf(server, tmp_path):
+    server.reconfigure({'export_dir': str(tmp_path)})
+    server.submit_layout(LAYOUT)
+    served = server.rec.wait(1)
+    server.request('reset')            # the export of room 1 is done before reset runs
+    assert parse_scene((tmp_path / 'room_00001.json').read_text()).to_dict() == \
+        served.scene.to_dict()
+    assert (tmp_path / 'room_00001.sdf').stat().st_size > 0
+    assert (tmp_path / 'room_00001.glb').read_bytes()[:4] == b'glTF'
+
+
+def test_check_rejects_what_the_descriptors_would():
+    assert check('seed', 3.0) == 3 and check('room_type', 'living room') == 'living'
+    for name, value in (('seed', -1), ('seed', 1.5), ('max_objects', 0), ('seed', True),
+                        ('auto_generate', 1), ('frame_id', ''), ('frame_id', 'a b'),
+                        ('device', 'tpu'), ('nonsense', 1), ('wall_height', float('nan'))):
+        with pytest.raises(ConfigError):
+            check(name, value)
+
+
+def test_missing_and_corrupt_weights_fail_at_construction_naming_the_file(tmp_path):
+    import shutil
+    shutil.copy(weights_dir() / 'bedroom.pt', tmp_path / 'bedroom.pt')
+    with pytest.raises(BundleError, match='living.pt'):
+        SceneServer(ServerConfig(weights_dir=str(tmp_path)), lambda s: None)
+    for rt in ('living', 'office', 'bathroom'):
+        shutil.copy(weights_dir() / f'{rt}.pt', tmp_path / f'{rt}.pt')
+    data = (tmp_path / 'office.pt').read_bytes()
+    (tmp_path / 'office.pt').write_bytes(data[:len(data) // 2])
+    with pytest.raises(BundleError, match='office.pt'):
+        SceneServer(ServerConfig(weights_dir=str(tmp_path)), lambda s: None)
+
+
+def test_an_exception_in_the_publisher_is_reported_and_the_worker_survives():
+    calls, rec = [], Recorder()
+
+    def publish(served):
+        calls.append(served)
+        if len(calls) == 1:
+            raise RuntimeError('publisher broke')
+
+    srv = SceneServer(ServerConfig(torch_threads=1, auto_generate=False), publish, rec.status)
+    try:
+        srv.submit_layout(LAYOUT)
+        ok, _ = srv.request('reset')
+        errors = [s for s in rec.statuses if s.level == ERROR]
+        assert errors and errors[0].last_error == 'internal error in layout: publisher broke'
+        assert ok and srv.status.level == OK          # the next room went out fine
+        assert len(calls) == 2
+    finally:
+        srv.close()
