@@ -1,5 +1,6 @@
 # Two set-up commands, each working on a fresh clone of a fresh machine:
-#   make demo   install into .venv, then furnish example rooms and show them
+#   make demo   install into .venv, start scene_synth_node, furnish an example room through
+#               it, ask it for one more object in a partial room, stop it
 #   make test   install into .venv, then run the test suite
 SHELL := /bin/bash
 .SHELLFLAGS := -eo pipefail -c
@@ -22,7 +23,7 @@ $(STAMP): requirements.txt setup.py setup.cfg package.xml
 	touch $(STAMP)
 
 demo: install
-	$(VENV)/bin/scene-synth demo --out demo_out
+	$(VENV)/bin/scene-synth ros demo --out demo_out
 
 test: install
 	$(PY) -m pytest -q
@@ -33,6 +34,7 @@ bench: install
 	$(PY) benchmarks/bench_synth.py
 	$(PY) benchmarks/bench_training.py
 	$(PY) benchmarks/module_diagnostics.py
+	$(PY) benchmarks/bench_node.py
 
 gallery: install
 	$(VENV)/bin/scene-synth gallery --out docs/gallery/corpus.png

@@ -183,6 +183,7 @@ class _Job:
     done: threading.Event = field(default_factory=threading.Event)
     ok: bool = False
     message: str = ''
+    abandoned: bool = False               # its caller stopped waiting: do not run it
 
 
 class SceneServer:
@@ -281,6 +282,7 @@ class SceneServer:
             job = _Job(kind, self._epoch)
         self._queue.put(job)
         if not job.done.wait(timeout):
+            job.abandoned = True
             return False, f'{kind} did not finish within {timeout:.0f} s'
         return job.ok, job.message
 
@@ -317,6 +319,8 @@ class SceneServer:
         return job.epoch != self._epoch
 
     def _execute(self, job: _Job) -> None:
+        if job.abandoned:
+            return
         if self._stale(job):
             job.message = 'superseded by a newer room layout'
             self._count_superseded(job)

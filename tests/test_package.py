@@ -28,7 +28,7 @@ def test_ros_dependencies_import_in_this_environment():
 def test_core_library_does_not_import_rclpy():
     code = ('import sys, pkgutil, importlib, scene_synth_ros\n'
             'for m in pkgutil.walk_packages(scene_synth_ros.__path__, "scene_synth_ros."):\n'
-            '    if m.name != "scene_synth_ros.node":\n'
+            '    if m.name not in ("scene_synth_ros.node", "scene_synth_ros.ros_client"):\n'
             '        importlib.import_module(m.name)\n'
             'assert "rclpy" not in sys.modules, "the core library imported rclpy"\n')
     subprocess.run([sys.executable, '-c', code], check=True, timeout=120)
@@ -51,6 +51,9 @@ def test_wheel_installs_the_ament_data_files(tmp_path):
         assert f'scene_synth_ros/weights/{rt}.pt' in names
     for cfg in ('compact', 'paper'):
         assert f'{data}share/scene_synth_ros/config/{cfg}.yaml' in names
+    info = next(n for n in names if n.endswith('.dist-info/entry_points.txt'))
+    entry_points = zipfile.ZipFile(wheel).read(info).decode()
+    assert 'scene_synth_node = scene_synth_ros.node:main' in entry_points  # for `ros2 run`
     entry_points = zipfile.ZipFile(wheel).read(
         'scene_synth_ros-0.1.0.dist-info/entry_points.txt').decode()
     assert 'scene-synth = scene_synth_ros.cli:main' in entry_points
