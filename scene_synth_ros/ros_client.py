@@ -247,8 +247,11 @@ def format_poses(msg: PoseArray) -> str:
 
 
 # ---- the node as a child process ---------------------------------------------------------
-def node_command(params: dict[str, Any] | None = None) -> list[str]:
+def node_command(params: dict[str, Any] | None = None,
+                 params_file: str | None = None) -> list[str]:
     cmd = [sys.executable, '-m', 'scene_synth_ros.node', '--ros-args']
+    if params_file:
+        cmd += ['--params-file', str(params_file)]
     for k, v in (params or {}).items():
         value = json.dumps(v) if isinstance(v, bool) else str(v)
         cmd += ['-p', f'{k}:={value}']
@@ -263,10 +266,10 @@ def node_env(domain_id: int) -> dict[str, str]:
     return env
 
 
-def start_node(domain_id: int, params: dict[str, Any] | None = None, log=None
-               ) -> subprocess.Popen:
+def start_node(domain_id: int, params: dict[str, Any] | None = None, log=None,
+               params_file: str | None = None) -> subprocess.Popen:
     """Start ``scene_synth_node`` in a child process on ``domain_id``."""
-    return subprocess.Popen(node_command(params), env=node_env(domain_id),
+    return subprocess.Popen(node_command(params, params_file), env=node_env(domain_id),
                             stdout=log or subprocess.DEVNULL,
                             stderr=subprocess.STDOUT if log else subprocess.DEVNULL)
 

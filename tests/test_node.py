@@ -4,6 +4,7 @@ Every node gets a ROS domain of its own, so tests (and test runs) do not hear ea
 """
 from __future__ import annotations
 
+from dataclasses import fields
 import itertools
 import json
 import math
@@ -19,13 +20,15 @@ from urllib.parse import urlparse
 from xml.etree import ElementTree as ET
 
 import pytest
+import yaml
 
 os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'   # before any rclpy.init
 
-from scene_synth_ros.paths import examples_dir, weights_dir  # noqa: E402
+from scene_synth_ros.paths import config_dir, examples_dir, weights_dir  # noqa: E402
 from scene_synth_ros.ros_client import (SceneSynthClient, node_command, node_env,  # noqa: E402
                                         start_node, stop_node)
 from scene_synth_ros.schema import parse_room_layout, parse_scene  # noqa: E402
+from scene_synth_ros.server import ServerConfig  # noqa: E402
 
 LAYOUT = (examples_dir() / 'bedroom_layout.json').read_text()
 L_LAYOUT = (examples_dir() / 'lshaped_living_layout.json').read_text()
@@ -39,11 +42,11 @@ def _domain() -> int:
 
 
 class RunningNode:
-    def __init__(self, tmp: Path, params=None):
+    def __init__(self, tmp: Path, params=None, params_file=None):
         self.domain = _domain()
         self.log_path = tmp / f'node_{self.domain}.log'
         self._log = open(self.log_path, 'w')
-        self.proc = start_node(self.domain, params, self._log)
+        self.proc = start_node(self.domain, params, self._log, params_file)
         self.client = SceneSynthClient(domain_id=self.domain, handle_signals=False)
         try:
             self.client.spin_until(lambda: self.proc.poll() is not None or self.client.ready(),
@@ -295,8 +298,16 @@ def test_command_line_clients(node, tmp_path):
 
 
 def test_requests_without_a_room_and_sigterm(tmp_path):
-    n = RunningNode(tmp_path)
+    # Started from a copy of the shipped parameter file, as `ros2 run ... --params-file`.
+    params = yaml.safe_load((config_dir() / 'scene_synth_node.yaml').read_text())
+    values = params['scene_synth_node']['ros__parameters']
+    assert values == {f.name: getattr(ServerConfig, f.name) for f in fields(ServerConfig)}
+    values.update(seed=17, marker_style='mesh', mesh_dir=str(tmp_path / 'meshes'))
+    (tmp_path / 'params.yaml').write_text(yaml.safe_dump(params))
+    n = RunningNode(tmp_path, params_file=tmp_path / 'params.yaml')
     try:
+        assert n.client.get_parameters(['seed', 'marker_style', 'room_type']) == {
+            'seed': 17, 'marker_style': 'mesh', 'room_type': 'bedroom'}
         ok, message = n.client.call('next_object')
         assert not ok and 'no room yet' in message
         ok, message = n.client.call('generate')

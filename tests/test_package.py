@@ -49,7 +49,7 @@ def test_wheel_installs_the_ament_data_files(tmp_path):
     assert 'scene_synth_ros/corpus/calibration.json' in names
     for rt in ('bedroom', 'living', 'office', 'bathroom'):
         assert f'scene_synth_ros/weights/{rt}.pt' in names
-    for cfg in ('compact', 'paper'):
+    for cfg in ('compact', 'paper', 'scene_synth_node'):
         assert f'{data}share/scene_synth_ros/config/{cfg}.yaml' in names
     info = next(n for n in names if n.endswith('.dist-info/entry_points.txt'))
     entry_points = zipfile.ZipFile(wheel).read(info).decode()
