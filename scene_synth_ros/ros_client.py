@@ -42,12 +42,13 @@ class ClientError(Exception):
 class SceneSynthClient:
     """Talks to one ``scene_synth_node``; keeps the latest message of every output topic."""
 
-    def __init__(self, node: str = DEFAULT_NODE, domain_id: int | None = None,
-                 handle_signals: bool = True):
+    def __init__(self, node: str = DEFAULT_NODE, domain_id: int | None = None):
         self.target = node if node.startswith('/') else '/' + node
         self.context = Context()
+        # No rclpy signal handlers: Ctrl-C stays a KeyboardInterrupt for the caller (the
+        # command line exits with 130), and a test runner keeps its own handlers.
         rclpy.init(context=self.context, domain_id=domain_id,
-                   signal_handler_options=None if handle_signals else SignalHandlerOptions.NO)
+                   signal_handler_options=SignalHandlerOptions.NO)
         self.node = rclpy.create_node(f'scene_synth_client_{os.getpid()}_{id(self) % 10000}',
                                       context=self.context)
         self.executor = SingleThreadedExecutor(context=self.context)

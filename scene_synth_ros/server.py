@@ -26,7 +26,8 @@ from .models.bundle import BundleError
 from .models.config import resolve_device
 from .scene import PlacedObject, Scene
 from .schema import SceneValidationError, dump_scene, parse_room_layout
-from .synth import MODULES, SynthConfig, Synthesizer, SynthesisCancelled, SynthesisError
+from .synth import (MODULES, SynthConfig, Synthesizer, SynthesisCancelled, SynthesisError,
+                    check_room_fits)
 
 OK, WARN, ERROR = 0, 1, 2               # the levels of diagnostic_msgs/DiagnosticStatus
 MARKER_STYLES = ('cube', 'mesh')
@@ -251,7 +252,8 @@ class SceneServer:
         when it is rejected."""
         try:
             scene = parse_room_layout(payload)
-        except SceneValidationError as e:
+            check_room_fits(scene.room)
+        except (SceneValidationError, SynthesisError) as e:
             self._reject(f'{source}: {e}')
             return False
         with self._lock:

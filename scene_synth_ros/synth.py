@@ -51,6 +51,31 @@ class SynthesisCancelled(Exception):
     it); nothing of the half-furnished room is returned."""
 
 
+def check_room_fits(room: Room) -> None:
+    """SynthesisError unless the smallest first-tier model of the room's type fits on its
+    floor outside the door zones (a narrow strip passes the schema's area check but can
+    hold nothing)."""
+    try:
+        spec = room_spec(room.room_type)
+    except KeyError as e:
+        raise SynthesisError(str(e.args[0])) from None
+    small = min((v for c in spec.categories if c.tier == 'first'
+                 for v in catalog.variants(c.name)), key=lambda v: v.width * v.depth)
+    short, long_ = sorted((small.width, small.depth))
+    free = room.polygon
+    for d in room.doors:
+        free = free.difference(door_zone(room, d))
+    core = free.buffer(-short / 2, join_style='mitre')
+    parts = getattr(core, 'geoms', [core])
+    reach = max((max(np.ptp(np.asarray(p.minimum_rotated_rectangle.exterior.coords), axis=0))
+                 if not p.is_empty and p.area > 0 else 0.0) for p in parts) if parts else 0.0
+    if core.is_empty or reach < long_ - short - 1e-6:
+        raise SynthesisError(
+            f'the floor is too small or narrow for any {room.room_type} furniture: not even '
+            f'the smallest, a {small.category} of {small.width:.2f} m x {small.depth:.2f} m, '
+            f'fits outside the door zones')
+
+
 @dataclass
 class SynthConfig:
     location_temperature: float = 0.8   # tau of the location distribution (paper: 0.8)
@@ -163,6 +188,7 @@ class Synthesizer:
         """Furnish ``room`` from empty (objects of a Scene given here are dropped)."""
         if isinstance(room, Scene):
             room = room.room
+        check_room_fits(room)
         return self.complete(Scene(room, []), seed, cancel)
 
     def complete(self, scene: Scene, seed: int = 0, cancel=None) -> Synthesis:

@@ -47,7 +47,7 @@ class RunningNode:
         self.log_path = tmp / f'node_{self.domain}.log'
         self._log = open(self.log_path, 'w')
         self.proc = start_node(self.domain, params, self._log, params_file)
-        self.client = SceneSynthClient(domain_id=self.domain, handle_signals=False)
+        self.client = SceneSynthClient(domain_id=self.domain)
         try:
             self.client.spin_until(lambda: self.proc.poll() is not None or self.client.ready(),
                                    90.0, 'services')
@@ -127,7 +127,7 @@ def test_a_layout_gives_markers_poses_and_scene_that_agree(node):
 
 def test_a_late_subscriber_receives_the_last_room(node):
     d = _furnish(node, L_LAYOUT)
-    with SceneSynthClient(domain_id=node.domain, handle_signals=False) as late:
+    with SceneSynthClient(domain_id=node.domain) as late:
         scene = json.loads(late.latest('scene', timeout=10.0).data)
         markers = late.latest('markers', timeout=10.0)
         poses = late.latest('poses', timeout=10.0)

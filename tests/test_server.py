@@ -107,12 +107,18 @@ def test_bad_layouts_are_rejected_in_one_sentence_and_the_room_stays(server):
         'too small': json.dumps({'room_type': 'bedroom', 'floor': [[0, 0], [0.5, 0],
                                                                    [0.5, 0.5], [0, 0.5]]}),
         'unknown room type': LAYOUT.replace('"bedroom"', '"kitchen"'),
+        # 2 m² pass the schema, but two doors' clear zones cover the whole floor
+        'no room for anything': json.dumps({
+            'room_type': 'bathroom', 'floor': [[0, 0], [2.05, 0], [2.05, 1.0], [0, 1.0]],
+            'doors': [{'position': [0.5, 0], 'width': 0.9, 'height': 2.0},
+                      {'position': [1.55, 0], 'width': 0.9, 'height': 2.0}]}),
     }
     for n, (what, text) in enumerate(bad.items(), start=1):
         assert not server.submit_layout(text), what
         sentence = server.status.last_error
         assert server.status.level == WARN and server.status.inputs_rejected == n
         assert sentence.startswith('room_layout: ') and '\n' not in sentence, what
+    assert 'not even the smallest, a trash can' in sentence
     assert not server.submit_polygon([(0, 0, 0), (1, 0, 0)])
     assert 'room_polygon' in server.status.last_error
     assert not server.submit_polygon([(0, 0, 0), (4, 0, 0), (4, 3, 0)], frame_id='odom')
