@@ -6,7 +6,7 @@
    and its resident memory grows by no more than 50 MB (measured after a warm-up).
 
     .venv/bin/python benchmarks/bench_node.py [--rooms 40] [--calls 60] [--soak 200]
-        [--torch-threads 2] [--domain-id N]
+        [--torch-threads 1] [--domain-id N]
 """
 import argparse
 import json
@@ -71,7 +71,7 @@ def main() -> int:
     ap.add_argument('--calls', type=int, default=60, help='next_object calls timed')
     ap.add_argument('--soak', type=int, default=200, help='layouts in the memory run')
     ap.add_argument('--invalid-every', type=int, default=4)
-    ap.add_argument('--torch-threads', type=int, default=2)
+    ap.add_argument('--torch-threads', type=int, default=1)
     ap.add_argument('--domain-id', type=int, default=random.Random().randrange(150, 230))
     args = ap.parse_args()
 

@@ -51,7 +51,7 @@ class ServerConfig:
     wall_height: float = 2.6            # for rooms that arrive as a bare polygon
     export_dir: str = ''                # '' = no export; else JSON + SDF + glTF per room
     mesh_dir: str = ''                  # '' = ~/.cache/scene_synth_ros/meshes
-    torch_threads: int = 2
+    torch_threads: int = 1              # 1 beat 2 on 2 cores beside a client (bench_node)
 
 
 # name -> (description, numeric range or allowed strings, read only). The node builds its
