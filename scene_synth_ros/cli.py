@@ -352,6 +352,23 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument('files', nargs='+')
     c.set_defaults(func=cmd_validate)
 
+    c = sub.add_parser('evaluate', help="the paper's evaluation of synthesized rooms: "
+                       'category KL, real-vs-synthetic classifier, speed, physical '
+                       'plausibility, similarity to the training rooms, component metrics')
+    c.add_argument('--room-type', default='all', help=f'{"|".join(ROOM_TYPES)}|all')
+    c.add_argument('--out', default='report', help='directory for index.md, results.json '
+                   'and the figures')
+    c.add_argument('--seed', type=int, default=0)
+    c.add_argument('--quick', action='store_true', help='tiny sizes: a smoke test of the '
+                   'whole run, not a measurement')
+    c.add_argument('--workers', type=int, default=None, help='processes of one torch thread '
+                   'each (default: all cores)')
+    c.add_argument('--weights-dir', help="trained bundles (default: the package's weights/)")
+    c.add_argument('--quiet', action='store_true', help='no progress bars or stage lines')
+    c.add_argument('--markdown', help='also write the report here (its figure links point '
+                   'into --out), e.g. docs/evaluation.md')
+    c.set_defaults(func=cmd_evaluate)
+
     from .ros_cli import add_parser as add_ros_parser
     add_ros_parser(sub)
     return p
@@ -557,6 +574,32 @@ def cmd_components(args) -> int:
             raise UserError(f'{path}: the bundle carries no component metrics')
         tables[rt] = b.metrics['components']
     print(format_components(tables, markdown=args.markdown))
+    return 0
+
+
+def cmd_evaluate(args) -> int:
+    import os
+
+    from .evaluation.report import terminal_summary
+    from .evaluation.run import EvalConfig, EvaluationError, run_evaluation
+    room_types = _room_types(args.room_type)
+    if args.workers is not None and args.workers < 1:
+        raise UserError(f'--workers must be at least 1, got {args.workers}')
+    cfg = EvalConfig.quick(args.seed) if args.quick else EvalConfig(seed=args.seed)
+    command = ' '.join(['scene-synth evaluate', '--room-type', args.room_type, '--out',
+                        args.out, '--seed', str(args.seed)]
+                       + (['--quick'] if args.quick else [])
+                       + (['--markdown', args.markdown] if args.markdown else []))
+    try:
+        results = run_evaluation(room_types, cfg, args.out, args.workers or os.cpu_count() or 1,
+                                 args.weights_dir, progress=not args.quiet,
+                                 echo=(lambda s: None) if args.quiet else print,
+                                 command=command, markdown_copy=args.markdown)
+    except EvaluationError as e:
+        raise UserError(str(e)) from None
+    print()
+    print(terminal_summary(results))
+    print(f'\nwrote {Path(args.out) / "index.md"} ({results["seconds"] / 60:.1f} min)')
     return 0
 
 

@@ -1,0 +1,260 @@
+"""The report: ``index.md`` (tables and figures, summary first), ``results.json`` (every
+number), and the short table printed at the end of ``scene-synth evaluate``."""
+from __future__ import annotations
+
+import json
+import math
+import os
+from pathlib import Path
+
+from ..synth import MODULES
+from . import paper
+from .data import CORPUS_SEED, HELDOUT_SEED, SEED_STRIDE
+
+
+def _pct(x) -> str:
+    return '–' if x is None or not math.isfinite(x) else f'{100 * x:.1f} %'
+
+
+def _num(x, fmt: str = '.4f') -> str:
+    return '–' if x is None or not math.isfinite(x) else format(x, fmt)
+
+
+def _table(header: list[str], rows: list[list[str]]) -> list[str]:
+    return (['| ' + ' | '.join(header) + ' |', '|' + '---|' * len(header)]
+            + ['| ' + ' | '.join(r) + ' |' for r in rows])
+
+
+def _classifier_keys(cfg: dict) -> list[tuple[str, str]]:
+    from .run import perturbation_key
+    keys = [('synthesized', 'synthesized (ours)')]
+    for p in cfg['perturbations']:
+        label = 'held-out corpus (control)' if p == 0 else f'perturbed {100 * p:g} %'
+        keys.append((perturbation_key(p), label))
+    return keys
+
+
+def _workers(hw: dict) -> str:
+    n = hw['workers']
+    return f'{n} worker process{"es" if n != 1 else ""} of one torch thread each'
+
+
+def _acc(c: dict | None) -> str:
+    if not c:
+        return '–'
+    return f'{100 * c["accuracy"]:.1f} ± {100 * c["stderr"]:.1f} %'
+
+
+def summary_rows(results: dict) -> list[list[str]]:
+    rows = []
+    for rt, r in results['room_types'].items():
+        d, c, s, sim = r['distribution'], r['classifier'], r['speed'], r['similarity']
+        ten = c.get('perturbed_10')
+        rows.append([rt, _num(d['kl_model']), _num(d['kl_heldout']), _num(d['kl_uniform']),
+                     _acc(c['synthesized']), _acc(ten) if ten else '–',
+                     f'{s["median"]:.3f} s', _pct(r['plausibility']['synthesized']['valid']),
+                     f'{sim["synthesized"]["median"]:.2f} / {sim["heldout"]["median"]:.2f}'])
+    return rows
+
+
+SUMMARY_HEADER = ['room type', 'KL(synth‖corpus)', 'KL noise floor', 'KL uniform',
+                  'classifier accuracy (50 % ideal)', 'perturbed 10 %', 'median time / room',
+                  'valid synthesized rooms', 'max similarity, median: synth / held-out']
+
+
+def markdown(results: dict, figure_dir: str = '') -> str:
+    cfg, hw = results['config'], results['hardware']
+    rts = results['room_types']
+    L: list[str] = ['# Evaluation of synthesized rooms', '']
+    cmd = results.get('command') or 'scene-synth evaluate'
+    L += [f'`{cmd}`: {cfg["name"]} sizes, seed {cfg["seed"]}, '
+          f'{results["seconds"] / 60:.1f} min on {hw["cpu"]} ({hw["cores"]} cores, '
+          f'{_workers(hw)}), torch {hw["torch"]}, '
+          f'weights: {results["weights_dir"]}.', '',
+          f'*Synthesized* rooms are the empty shells of held-out corpus rooms (corpus seed '
+          f'{HELDOUT_SEED}, never seen in training) furnished from scratch by the pipeline; '
+          f'the *training corpus* is corpus seed {CORPUS_SEED} (its first 3,000 rooms are the '
+          f'shipped weights\' training rooms); *held-out corpus* rooms are the same seed-'
+          f'{HELDOUT_SEED} shells as the corpus rules furnished them. Every figure is a '
+          f'function of the seed.', '']
+    L += ['## Summary', ''] + _table(SUMMARY_HEADER, summary_rows(results)) + ['']
+    L += ['The noise floor is the KL of held-out corpus rooms, as many as there are '
+          'synthesized rooms: a synthesized KL near it is as close to the corpus as the '
+          'corpus is to itself. Paper (SUNCG): KL ' + ', '.join(
+              f'{rt} {v}' for rt, v in paper.KL['ours'].items())
+          + f'; classifier {paper.CLASSIFIER["ours"]} %; '
+          f'{paper.SPEED["ours"][0]} s per room on a {paper.SPEED["ours"][1]}.', '']
+
+    # 1. categories
+    L += ['## 1. Category distribution (paper, table 1)', '',
+          'KL(rooms ‖ training corpus) over the categories of all objects. Lower is better.',
+          '']
+    rows = []
+    for rt, r in rts.items():
+        d = r['distribution']
+        o = d['objects_per_room']
+        rows.append([rt, _num(d['kl_model']), _num(d['kl_heldout']), _num(d['kl_uniform']),
+                     _num(paper.KL['ours'].get(rt)), _num(paper.KL['uniform'].get(rt)),
+                     f'{o["synthesized"]:.2f}', f'{o["corpus"]:.2f}',
+                     f'{d["rooms"]["synthesized"]} / {d["rooms"]["corpus"]} / '
+                     f'{d["rooms"]["heldout"]}'])
+    L += _table(['room type', 'synthesized', 'held-out corpus (noise floor)', 'uniform',
+                 'paper: ours', 'paper: uniform', 'objects / room, synthesized',
+                 'corpus', 'rooms (synth / corpus / held-out)'], rows) + ['']
+    for rt, r in rts.items():
+        fig = _fig(figure_dir, r['figures']['categories'])
+        L += [f'![{rt} category frequencies]({fig})', '']
+
+    # 2. classifier
+    keys = _classifier_keys(cfg)
+    any_rt = next(iter(rts.values()))
+    cc = any_rt['classifier_config']
+    first = any_rt['classifier']['synthesized']
+    L += ['## 2. Real vs synthetic classifier (paper, table 2)', '',
+          f'A ResNet-34-style classifier (basic blocks {"-".join(map(str, cc["blocks"]))}, '
+          f'widths {"-".join(map(str, cc["widths"]))}, global pooling, one logit) reads the '
+          f'pipeline\'s multi-channel top-down image (room frame, at the shipped '
+          f'weights\' resolution of {any_rt.get("resolution", 64)} px) and is trained for '
+          f'{cc["epochs"]} epoch(s) (batch {cc["batch_size"]}, Adam, lr {cc["lr"]:g} with '
+          f'cosine decay, weight decay {cc["weight_decay"]:g}, random 90° turns) on '
+          f'{first["train"]} rooms, half training corpus and half "fake", then tested on '
+          f'{first["test"]} held-out rooms, balanced. 50 % is ideal (it cannot tell). The '
+          f'perturbed baselines are held-out corpus rooms with every object moved by Gaussian '
+          f'noise of the given fraction of its bounding box; the control is held-out corpus '
+          f'rooms unmoved. Cells: test accuracy ± binomial standard error (training '
+          f'accuracy of the last epoch).', '']
+    rows = []
+    for rt, r in rts.items():
+        rows.append([rt] + [f'{_acc(r["classifier"].get(k))} '
+                            f'({_pct(r["classifier"][k]["train_accuracy"])})'
+                            if k in r['classifier'] else '–' for k, _ in keys])
+    pc = paper.CLASSIFIER
+    paper_row = {'synthesized': pc['ours'], 'perturbed_1': pc['perturbed_1'],
+                 'perturbed_5': pc['perturbed_5'], 'perturbed_10': pc['perturbed_10']}
+    rows.append(['paper (SUNCG, all types)'] + [f'{paper_row[k]:.2f} %' if k in paper_row
+                                               else '–' for k, _ in keys])
+    L += _table(['room type'] + [label for _, label in keys], rows) + ['']
+
+    # 3. speed
+    L += ['## 3. Speed (paper, table 3)', '',
+          f'Seconds per complete room, furnished from empty, measured on every synthesized '
+          f'room: {hw["cpu"]}, {hw["machine"]}, {hw["cores"]} cores, {_workers(hw)}, one '
+          f'room at a time per process (each warmed up first). Per module: mean milliseconds '
+          f'per room.', '']
+    rows = []
+    for rt, r in rts.items():
+        s = r['speed']
+        rows.append([rt, str(s['rooms']), f'{s["mean"]:.3f}', f'{s["median"]:.3f}',
+                     f'{s["p90"]:.3f}', f'{s["objects_per_room"]:.2f}']
+                    + [f'{1000 * s["modules"][m]:.0f}' for m in MODULES])
+    L += _table(['room type', 'rooms', 'mean s', 'median s', 'p90 s', 'objects / room']
+                + [f'{m} ms' for m in MODULES], rows) + ['']
+    L += _table(['method (paper)', 'seconds per room', 'hardware'],
+                [['ours (paper)', f'{paper.SPEED["ours"][0]}', paper.SPEED['ours'][1]],
+                 ['Deep Priors', f'~{paper.SPEED["deep_priors"][0]:g}',
+                  paper.SPEED['deep_priors'][1]],
+                 ['GRAINS', f'{paper.SPEED["grains"][0]}', paper.SPEED['grains'][1]]]) + ['']
+
+    # 4. plausibility
+    L += ['## 4. Physical plausibility', '',
+          'Mean per room of: the fraction of first-tier object pairs that collide, of objects '
+          'off the floor, of doors whose clear zone is entered, of second-tier objects less '
+          'than 70 % on their parent; rooms where a 0.4 m robot can drive between all doors; '
+          'rooms passing every check (`geometry.check_scene`, the definitions the corpus and '
+          'insertion use). Held-out corpus rooms and their perturbed copies for reference.',
+          '']
+    rows = []
+    for rt, r in rts.items():
+        for name, p in r['plausibility'].items():
+            label = {'synthesized': 'synthesized', 'corpus': 'held-out corpus'}.get(
+                name, name.replace('perturbed_', 'perturbed ') + ' %')
+            rows.append([rt, label, str(p['rooms'])] + [_pct(p[m]) for m in (
+                'colliding_pairs', 'off_floor', 'blocked_doors', 'under_supported',
+                'doors_connected', 'valid')])
+    L += _table(['room type', 'rooms from', 'n', 'colliding pairs', 'off the floor',
+                 'blocked doors', 'under-supported', 'doors connected', 'valid rooms'],
+                rows) + ['']
+
+    # 5. similarity
+    L += ['## 5. Generalisation (paper, appendix)', '',
+          'For each room, its largest similarity to any of the training-corpus rooms '
+          '(1 = an exact copy). Similarity: objects are matched one to one within a '
+          'category by optimal assignment, maximising the sum of exp(-d²/σ²) over matches, '
+          'where d is the distance between positions normalised to the room\'s bounding box '
+          'in the axes of its longest wall (long side first); the sum is divided by the '
+          'larger object count, and the best of the room\'s four mirror images is kept '
+          f'(`scene_synth_ros/evaluation/similarity.py`). σ = {cfg["similarity_sigma"]:g}.',
+          '']
+    rows = []
+    for rt, r in rts.items():
+        sm = r['similarity']
+        a, b = sm['synthesized'], sm['heldout']
+        rows.append([rt, str(sm['references']), f'{a["n"]} / {b["n"]}',
+                     f'{a["median"]:.3f} / {b["median"]:.3f}',
+                     f'{a["p10"]:.3f} / {b["p10"]:.3f}', f'{a["p90"]:.3f} / {b["p90"]:.3f}',
+                     f'{_pct(a["above_0.9"])} / {_pct(b["above_0.9"])}'])
+    L += _table(['room type', 'training rooms', 'rooms (synth / held-out)',
+                 'median (synth / held-out)', '10th percentile', '90th percentile',
+                 'above 0.9'], rows) + ['']
+    for rt, r in rts.items():
+        fig = _fig(figure_dir, r['figures']['similarity'])
+        L += [f'![{rt} maximal similarity]({fig})', '']
+
+    # 6. components
+    L += ['## 6. Component metrics (paper, appendix table)', '',
+          'Held-out metrics of each module of the shipped weights, stored in their bundles '
+          'at export (512 held-out examples), beside a randomly initialised network of the '
+          'same shape. Improvement: absolute for accuracies, relative for losses (as the '
+          'paper). The paper\'s losses are on other scales, so only its improvement is '
+          'shown.', '']
+    rows = []
+    for rt, r in rts.items():
+        for c in r['components'] or []:
+            fmt = (lambda v: f'{v:+.1f} %') if c['relative'] else (lambda v: f'{v:+.3f}')
+            pi = c['paper_improvement']
+            rows.append([rt, c['metric'], f'{c["trained"]:.3f}', f'{c["random"]:.3f}',
+                         fmt(c['improvement']), fmt(pi) if pi is not None else '–'])
+    L += _table(['room type', 'metric', 'trained', 'random', 'improvement',
+                 'paper improvement'], rows) + ['']
+
+    # gallery
+    L += ['## Gallery', '', 'Top row: held-out shells furnished by the model; bottom row: the '
+          'same shells furnished by the corpus rules.', '']
+    for rt, r in rts.items():
+        L += [f'![{rt} gallery]({_fig(figure_dir, r["figures"]["gallery"])})', '']
+
+    # sizes
+    L += ['## Sizes, seeds and time', '',
+          f'Synthesized room i uses synthesis seed {SEED_STRIDE:,} x seed + i. Sizes: '
+          + ', '.join(f'{k} {v}' for k, v in cfg.items() if k not in ('name', 'seed')) + '.',
+          '']
+    rows = [[rt] + [f'{v:.1f}' for v in r['stage_seconds'].values()]
+            for rt, r in rts.items()]
+    stages = list(any_rt['stage_seconds'])
+    L += _table(['room type'] + [f'{s} (s)' for s in stages], rows) + ['']
+    return '\n'.join(L)
+
+
+def _fig(figure_dir: str, name: str) -> str:
+    return f'{figure_dir}/{name}' if figure_dir else name
+
+
+def write(results: dict, out: Path, copy_to: Path | None = None) -> None:
+    """``index.md`` and ``results.json`` in ``out``; with ``copy_to``, the same Markdown
+    there too, its figure links pointing into ``out``."""
+    out = Path(out)
+    (out / 'results.json').write_text(json.dumps(results, indent=1, default=str) + '\n')
+    (out / 'index.md').write_text(markdown(results) + '\n')
+    if copy_to is not None:
+        rel = os.path.relpath(out.resolve(), Path(copy_to).resolve().parent)
+        Path(copy_to).write_text(markdown(results, Path(rel).as_posix()) + '\n')
+
+
+def terminal_summary(results: dict) -> str:
+    """The short table printed at the end of a run."""
+    head = ['room type', 'KL synth', 'KL floor', 'KL unif', 'classifier', 'perturb 10%',
+            's/room', 'valid', 'max-sim syn/held']
+    rows = summary_rows(results)
+    widths = [max(len(h), *(len(r[k]) for r in rows)) for k, h in enumerate(head)]
+    line = lambda cells: '  '.join(c.ljust(w) for c, w in zip(cells, widths))  # noqa: E731
+    return '\n'.join([line(head)] + [line(r) for r in rows])
