@@ -11,7 +11,7 @@ STAMP := $(VENV)/.installed-stamp
 # pip's warnings about the machine's local package mirrors are noise, not failures.
 PIP_QUIET := grep -v -E "is ignored: it is neither a file nor a directory" || true
 
-.PHONY: install demo test bench gallery clean
+.PHONY: install demo test bench gallery evaluate clean
 
 install: $(STAMP)
 
@@ -40,6 +40,9 @@ gallery: install
 	$(VENV)/bin/scene-synth gallery --out docs/gallery/corpus.png
 	$(VENV)/bin/scene-synth gallery --source synthesized --out docs/gallery/synthesized.png
 	$(VENV)/bin/scene-synth gallery --source completions --out docs/gallery/completions.png
+
+evaluate: install
+	$(VENV)/bin/scene-synth evaluate --room-type all --out docs/evaluation --markdown docs/evaluation.md
 
 clean:
 	rm -rf $(VENV) demo_out .pytest_cache build *.egg-info

@@ -367,6 +367,8 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument('--quiet', action='store_true', help='no progress bars or stage lines')
     c.add_argument('--markdown', help='also write the report here (its figure links point '
                    'into --out), e.g. docs/evaluation.md')
+    c.add_argument('--report-only', action='store_true', help='measure nothing: write the '
+                   'report again from --out/results.json of an earlier run')
     c.set_defaults(func=cmd_evaluate)
 
     from .ros_cli import add_parser as add_ros_parser
@@ -580,8 +582,20 @@ def cmd_components(args) -> int:
 def cmd_evaluate(args) -> int:
     import os
 
-    from .evaluation.report import terminal_summary
+    from .evaluation.report import terminal_summary, write
     from .evaluation.run import EvalConfig, EvaluationError, run_evaluation
+    if args.report_only:
+        path = Path(args.out) / 'results.json'
+        try:
+            results = json.loads(path.read_text(encoding='utf-8'))
+            write(results, Path(args.out), Path(args.markdown) if args.markdown else None)
+        except FileNotFoundError:
+            raise UserError(f'{path}: no such file; run the evaluation first') from None
+        except (ValueError, KeyError, TypeError) as e:
+            raise UserError(f'{path} is not the results of an evaluation ({e})') from None
+        print(terminal_summary(results))
+        print(f'\nwrote {Path(args.out) / "index.md"} from {path}')
+        return 0
     room_types = _room_types(args.room_type)
     if args.workers is not None and args.workers < 1:
         raise UserError(f'--workers must be at least 1, got {args.workers}')

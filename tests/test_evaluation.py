@@ -197,6 +197,18 @@ def test_quick_report_of_one_room_type_is_written_with_finite_numbers(tmp_path):
     assert len(r['similarity']['synthesized']['values']) == 16
     assert r['similarity']['references'] == 32
     assert 0 <= r['classifier']['synthesized']['accuracy'] <= 1
+    assert '**bathroom**: category KL' in index               # the plain-words reading
+
+    # The report again from results.json alone, plus a copy elsewhere linking to out/.
+    (out / 'index.md').unlink()
+    copy = tmp_path / 'docs' / 'evaluation.md'
+    copy.parent.mkdir()
+    proc = subprocess.run([sys.executable, '-m', 'scene_synth_ros.cli', 'evaluate',
+                           '--report-only', '--out', str(out), '--markdown', str(copy)],
+                          capture_output=True, text=True, cwd=ROOT, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert (out / 'index.md').read_text() == index
+    assert '(../report/gallery_bathroom.png)' in copy.read_text()
 
 
 def test_cli_bad_input_is_one_sentence(tmp_path):

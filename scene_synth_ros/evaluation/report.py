@@ -84,6 +84,7 @@ def markdown(results: dict, figure_dir: str = '') -> str:
               f'{rt} {v}' for rt, v in paper.KL['ours'].items())
           + f'; classifier {paper.CLASSIFIER["ours"]} %; '
           f'{paper.SPEED["ours"][0]} s per room on a {paper.SPEED["ours"][1]}.', '']
+    L += _reading(rts)
 
     # 1. categories
     L += ['## 1. Category distribution (paper, table 1)', '',
@@ -226,13 +227,59 @@ def markdown(results: dict, figure_dir: str = '') -> str:
     # sizes
     L += ['## Sizes, seeds and time', '',
           f'Synthesized room i uses synthesis seed {SEED_STRIDE:,} x seed + i. Sizes: '
-          + ', '.join(f'{k} {v}' for k, v in cfg.items() if k not in ('name', 'seed')) + '.',
+          + ', '.join(f'{k} {_size(v)}' for k, v in cfg.items() if k not in ('name', 'seed'))
+          + '.',
           '']
     rows = [[rt] + [f'{v:.1f}' for v in r['stage_seconds'].values()]
             for rt, r in rts.items()]
     stages = list(any_rt['stage_seconds'])
     L += _table(['room type'] + [f'{s} (s)' for s in stages], rows) + ['']
     return '\n'.join(L)
+
+
+def _size(v) -> str:
+    """A configuration value, the same whether it came from the run or from results.json
+    (where tuples have become lists)."""
+    return f'({", ".join(map(str, v))})' if isinstance(v, (list, tuple)) else str(v)
+
+
+def _reading(rts: dict) -> list[str]:
+    """One plain sentence per room type on what the summary's numbers say, so a reader
+    need not work out the comparisons."""
+    L = ['### Reading the results', '']
+    for rt, r in rts.items():
+        d, c, sim = r['distribution'], r['classifier'], r['similarity']
+        floor = max(d['kl_heldout'], 1e-9)
+        syn = c['synthesized']['accuracy']
+        levels = [(k, v['accuracy']) for k, v in c.items()
+                  if k.startswith('perturbed_') and k != 'perturbed_0']
+        near = min(levels, key=lambda kv: abs(kv[1] - syn)) if levels else None
+        o = d['objects_per_room']
+        med_s, med_h = sim['synthesized']['median'], sim['heldout']['median']
+        text = (f'- **{rt}**: category KL {d["kl_model"]:.4f}, {d["kl_model"] / floor:.1f}x '
+                f'the corpus\' own noise floor and {d["kl_uniform"] / max(d["kl_model"], 1e-9):.0f}x '
+                f'below a uniform guess; {o["synthesized"]:.2f} objects per room against '
+                f'{o["corpus"]:.2f} ({100 * (o["synthesized"] / o["corpus"] - 1):+.1f} %). '
+                f'The classifier tells synthesized from corpus rooms {_pct(syn)} of the time')
+        if near is not None:
+            top = max(levels, key=lambda kv: kv[1])
+            if syn > top[1] + 2 * c['synthesized']['stderr']:
+                text += (f', more often than corpus rooms whose objects were moved by '
+                         f'{top[0].split("_")[1]} % of their size ({_pct(top[1])})')
+            else:
+                text += (f', closest to corpus rooms whose objects were moved by '
+                         f'{near[0].split("_")[1]} % of their size ({_pct(near[1])})')
+        text += (f'. Nearest training room: median similarity {med_s:.2f} for synthesized '
+                 f'rooms, {med_h:.2f} for held-out corpus rooms (')
+        if med_s > med_h + 0.02:
+            text += 'synthesized rooms sit closer to training rooms than unseen corpus rooms do).'
+        elif med_s < med_h - 0.05:
+            text += ('no copying, but further from every training room than unseen corpus '
+                     'rooms are: arrangements the corpus rules do not make).')
+        else:
+            text += 'as close to the training rooms as unseen corpus rooms are: no copying).'
+        L.append(text)
+    return L + ['']
 
 
 def _fig(figure_dir: str, name: str) -> str:
