@@ -175,6 +175,16 @@ def markdown(results: dict, figure_dir: str = '') -> str:
     L += _table(['room type', 'rooms from', 'n', 'colliding pairs', 'off the floor',
                  'blocked doors', 'under-supported', 'doors connected', 'valid rooms'],
                 rows) + ['']
+    L += ['Distance of first-tier objects to the nearest wall, mean per room: the training '
+          'rooms put wall furniture 0–2 cm from the wall and almost nothing 2–15 cm from it, '
+          'a band where a location grid of about 9 cm a pixel drops furniture unless '
+          'synthesis pushes it back (`synth.against_walls`).', '']
+    rows = [[rt, label, _pct(p.get('against_wall')), _pct(p.get('near_wall'))]
+            for rt, r in rts.items()
+            for name, p in r['plausibility'].items() if name in ('synthesized', 'corpus')
+            for label in [{'synthesized': 'synthesized', 'corpus': 'held-out corpus'}[name]]]
+    L += _table(['room type', 'rooms from', '0–2 cm from a wall', '2–15 cm from a wall'],
+                rows) + ['']
 
     # 5. similarity
     L += ['## 5. Generalisation (paper, appendix)', '',
