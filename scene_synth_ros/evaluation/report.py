@@ -263,22 +263,32 @@ def _reading(rts: dict) -> list[str]:
         syn = c['synthesized']['accuracy']
         levels = [(k, v['accuracy']) for k, v in c.items()
                   if k.startswith('perturbed_') and k != 'perturbed_0']
-        near = min(levels, key=lambda kv: abs(kv[1] - syn)) if levels else None
         o = d['objects_per_room']
         med_s, med_h = sim['synthesized']['median'], sim['heldout']['median']
         text = (f'- **{rt}**: category KL {d["kl_model"]:.4f}, {d["kl_model"] / floor:.1f}x '
-                f'the corpus\' own noise floor and {d["kl_uniform"] / max(d["kl_model"], 1e-9):.0f}x '
+                f'the corpus\' own noise floor and '
+                f'{d["kl_uniform"] / max(d["kl_model"], 1e-9):.0f}x '
                 f'below a uniform guess; {o["synthesized"]:.2f} objects per room against '
                 f'{o["corpus"]:.2f} ({100 * (o["synthesized"] / o["corpus"] - 1):+.1f} %). '
                 f'The classifier tells synthesized from corpus rooms {_pct(syn)} of the time')
-        if near is not None:
-            top = max(levels, key=lambda kv: kv[1])
-            if syn > top[1] + 2 * c['synthesized']['stderr']:
-                text += (f', more often than corpus rooms whose objects were moved by '
-                         f'{top[0].split("_")[1]} % of their size ({_pct(top[1])})')
+        if levels:
+            # by accuracy, the larger perturbation first among equal accuracies
+            ranked = sorted(levels, key=lambda kv: (kv[1], float(kv[0].split('_')[1])))
+            def name(kv):
+                return f'{kv[0].split("_")[1]} % of their size ({_pct(kv[1])})'
+            se = c['synthesized']['stderr']
+            moved = 'corpus rooms whose objects were moved by'
+            if syn > ranked[-1][1] + 2 * se:
+                text += f', more often than {moved} {name(ranked[-1])}'
+            elif syn < ranked[0][1] - 2 * se:
+                text += f', less often than {moved} {name(ranked[0])}'
             else:
-                text += (f', closest to corpus rooms whose objects were moved by '
-                         f'{near[0].split("_")[1]} % of their size ({_pct(near[1])})')
+                lo = max((kv for kv in ranked if kv[1] <= syn), key=lambda kv: kv[1],
+                         default=ranked[0])
+                hi = min((kv for kv in ranked if kv[1] >= syn), key=lambda kv: kv[1],
+                         default=ranked[-1])
+                text += (f', like {moved} {name(lo)}' if lo == hi
+                         else f', between {moved} {name(lo)} and by {name(hi)}')
         text += (f'. Nearest training room: median similarity {med_s:.2f} for synthesized '
                  f'rooms, {med_h:.2f} for held-out corpus rooms (')
         if med_s > med_h + 0.02:
