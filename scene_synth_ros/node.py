@@ -88,7 +88,7 @@ class SceneSynthNode(Node):
             raise StartupError(' '.join(str(e).split())) from None
         config = ServerConfig(**{n: self.get_parameter(n).value for n in PARAMETERS})
         try:
-            self.server = SceneServer(config, self._publish_room, self._status_changed,
+            self.server = SceneServer(config, self._publish_room, self._publish_diagnostics,
                                       self._log)
         except (BundleError, SynthesisError, ConfigError) as e:
             raise StartupError(str(e)) from None
@@ -168,9 +168,6 @@ class SceneSynthNode(Node):
         self.get_logger().info(
             f'{served.source}: {served.scene.room.room_type} with {len(served.scene)} objects'
             f'{added} (seed {served.seed})')
-
-    def _status_changed(self, status: Status) -> None:
-        self._publish_diagnostics(status)
 
     def _publish_diagnostics(self, status: Status | None = None) -> None:
         status = status or self.server.status

@@ -220,6 +220,12 @@ def _named(name, value):
 
 
 # ---- text renderings for the command line -----------------------------------------------
+def quaternion_yaw(q) -> float:
+    """Yaw of a rotation about +z only (the node's poses), the inverse of
+    ``node.yaw_quaternion``."""
+    return 2 * math.atan2(q.z, q.w)
+
+
 def format_markers(msg: MarkerArray) -> str:
     names = {0: 'ARROW', 1: 'CUBE', 9: 'TEXT', 10: 'MESH', 11: 'TRIANGLE_LIST'}
     lines = []
@@ -227,7 +233,7 @@ def format_markers(msg: MarkerArray) -> str:
         if m.action == m.DELETEALL:
             lines.append('DELETEALL')
             continue
-        yaw = 2 * math.atan2(m.pose.orientation.z, m.pose.orientation.w)
+        yaw = quaternion_yaw(m.pose.orientation)
         lines.append(f'{m.ns:18s} {m.id:3d} {names.get(m.type, m.type):13s} '
                      f'x {m.pose.position.x:6.2f} y {m.pose.position.y:6.2f} '
                      f'z {m.pose.position.z:5.2f} yaw {math.degrees(yaw):7.1f}° scale '
@@ -240,7 +246,7 @@ def format_markers(msg: MarkerArray) -> str:
 def format_poses(msg: PoseArray) -> str:
     lines = [f'frame {msg.header.frame_id}, {len(msg.poses)} poses']
     for k, p in enumerate(msg.poses):
-        yaw = 2 * math.atan2(p.orientation.z, p.orientation.w)
+        yaw = quaternion_yaw(p.orientation)
         lines.append(f'{k:3d}  x {p.position.x:6.2f}  y {p.position.y:6.2f}  '
                      f'z {p.position.z:5.2f}  yaw {math.degrees(yaw):7.1f}°')
     return '\n'.join(lines)

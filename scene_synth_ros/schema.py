@@ -593,8 +593,13 @@ def _has_dict(value: Any) -> bool:
 def save_scene(scene: Scene, path: str | os.PathLike) -> None:
     """Validate ``scene`` and write it as JSON to ``path`` (via a temporary file, so a failed
     write never leaves a half-written scene behind)."""
-    text = dump_scene(scene)
+    write_atomic(path, dump_scene(scene) + '\n')
+
+
+def write_atomic(path: str | os.PathLike, text: str) -> None:
+    """Write ``text`` to ``path`` through a temporary file beside it, so a reader (or a
+    failed write) never sees half a file."""
     path = Path(path)
     tmp = path.with_name(path.name + '.tmp')
-    tmp.write_text(text + '\n', encoding='utf-8')
+    tmp.write_text(text, encoding='utf-8')
     os.replace(tmp, path)

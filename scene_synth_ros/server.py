@@ -23,14 +23,14 @@ from typing import Any, Callable
 
 from .categories import ROOM_TYPES, resolve_room_type
 from .models.bundle import BundleError
+from .markers import MARKER_STYLES
 from .models.config import resolve_device
 from .scene import PlacedObject, Scene
-from .schema import SceneValidationError, dump_scene, parse_room_layout
+from .schema import SceneValidationError, dump_scene, parse_room_layout, write_atomic
 from .synth import (MODULES, SynthConfig, Synthesizer, SynthesisCancelled, SynthesisError,
                     check_room_fits)
 
 OK, WARN, ERROR = 0, 1, 2               # the levels of diagnostic_msgs/DiagnosticStatus
-MARKER_STYLES = ('cube', 'mesh')
 DEVICES = ('auto', 'cpu', 'cuda')
 SERVICE_TIMEOUT = 120.0                 # seconds a service waits for the worker
 
@@ -324,8 +324,7 @@ class SceneServer:
         if job.abandoned:
             return
         if self._stale(job):
-            job.message = 'superseded by a newer room layout'
-            self._count_superseded(job)
+            self._supersede(job)
             return
         with self._lock:
             cfg, synth, current = self.config, self._synth, self._scene
@@ -359,8 +358,7 @@ class SceneServer:
             start = Scene(base.room, []) if job.kind == 'generate' else base
             result = synth.complete(start, seed, cancel=lambda: self._stale(job))
         except SynthesisCancelled:
-            job.message = 'superseded by a newer room layout'
-            self._count_superseded(job)
+            self._supersede(job)
             return
         except (SynthesisError, BundleError) as e:
             self._reject(f'{"room_layout" if job.kind == "layout" else job.kind}: {e}')
@@ -408,8 +406,7 @@ class SceneServer:
             if not stale:
                 self._scene = served.scene
         if stale:
-            job.message = 'superseded by a newer room layout'
-            self._count_superseded(job)
+            self._supersede(job)
             return False
         self._set_status(level=OK, message=f'{served.source}: {len(served.scene)} objects '
                          f'in a {served.scene.room.room_type}',
@@ -427,9 +424,7 @@ class SceneServer:
         stem = f'room_{self.status.rooms_served:05d}'
         try:
             directory.mkdir(parents=True, exist_ok=True)
-            tmp = directory / f'{stem}.json.tmp'
-            tmp.write_text(served.json + '\n', encoding='utf-8')
-            os.replace(tmp, directory / f'{stem}.json')
+            write_atomic(directory / f'{stem}.json', served.json + '\n')
             export_sdf(served.scene, directory / f'{stem}.sdf', directory / 'meshes')
             export_gltf(served.scene, directory / f'{stem}.glb')
         except OSError as e:
@@ -443,7 +438,8 @@ class SceneServer:
         self._set_status(level=WARN, message=f'input rejected: {sentence}',
                          last_error=sentence, increment='inputs_rejected')
 
-    def _count_superseded(self, job: _Job) -> None:
+    def _supersede(self, job: _Job) -> None:
+        job.message = 'superseded by a newer room layout'
         self._set_status(increment='requests_superseded')
 
     def _set_status(self, increment: str | None = None, **changes) -> None:

@@ -26,7 +26,7 @@ os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'   # before any rclpy.i
 
 from scene_synth_ros.paths import config_dir, examples_dir, weights_dir  # noqa: E402
 from scene_synth_ros.ros_client import (SceneSynthClient, node_command, node_env,  # noqa: E402
-                                        start_node, stop_node)
+                                        quaternion_yaw, start_node, stop_node)
 from scene_synth_ros.schema import parse_room_layout, parse_scene  # noqa: E402
 from scene_synth_ros.server import ServerConfig  # noqa: E402
 
@@ -82,10 +82,6 @@ def _furnish(node, layout=LAYOUT) -> dict:
     return node.client.publish_layout(layout, timeout=60.0)
 
 
-def _yaw(q) -> float:
-    return 2 * math.atan2(q.z, q.w)
-
-
 def _objects_agree(scene_d, markers, poses, frame='map'):
     scene = parse_scene(scene_d)                         # valid against msg_schemas/
     assert markers.markers[0].action == markers.markers[0].DELETEALL
@@ -102,7 +98,7 @@ def _objects_agree(scene_d, markers, poses, frame='map'):
     assert all(m.header.frame_id == frame for m in markers.markers)
     for o, m, p in zip(scene.objects, objs, poses.poses):
         assert (p.position.x, p.position.y, p.position.z) == pytest.approx(o.position)
-        assert math.cos(_yaw(p.orientation) - o.yaw) == pytest.approx(1.0)
+        assert math.cos(quaternion_yaw(p.orientation) - o.yaw) == pytest.approx(1.0)
         assert m.pose.position.x == pytest.approx(o.position[0])
         assert m.pose.position.y == pytest.approx(o.position[1])
         if m.type == MARKER_CUBE:
