@@ -11,7 +11,7 @@ STAMP := $(VENV)/.installed-stamp
 # pip's warnings about the machine's local package mirrors are noise, not failures.
 PIP_QUIET := grep -v -E "is ignored: it is neither a file nor a directory" || true
 
-.PHONY: install demo test bench gallery evaluate clean
+.PHONY: install demo test test-fast lint bench gallery evaluate clean
 
 install: $(STAMP)
 
@@ -27,6 +27,9 @@ demo: install
 
 test: install
 	$(PY) -m pytest -q
+
+lint: install
+	$(VENV)/bin/ruff check .
 
 bench: install
 	$(PY) benchmarks/bench_render.py

@@ -35,7 +35,6 @@ setup(
     maintainer_email='dev@scene-synth-ros.invalid',
     description='Indoor scene synthesis (Ritchie et al., CVPR 2019) as a ROS 2 node.',
     license='Apache-2.0',
-    tests_require=['pytest'],
     entry_points={
         'console_scripts': [
             'scene-synth = scene_synth_ros.cli:main',

@@ -20,10 +20,10 @@ sys.path.insert(0, str(ROOT))
 
 import torch  # noqa: E402
 
-from scene_synth_ros.models.bundle import NETWORKS, build_networks  # noqa: E402
-from scene_synth_ros.models.config import PipelineConfig  # noqa: E402
-from scene_synth_ros.models.examples import ExampleSource  # noqa: E402
-from scene_synth_ros.models.train import load_corpus, train_module  # noqa: E402
+from scene_synth_ros.networks.bundle import NETWORKS, build_networks  # noqa: E402
+from scene_synth_ros.networks.config import PipelineConfig  # noqa: E402
+from scene_synth_ros.networks.examples import ExampleSource  # noqa: E402
+from scene_synth_ros.networks.train import load_corpus, train_module  # noqa: E402
 
 
 def main():

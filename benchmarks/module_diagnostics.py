@@ -18,8 +18,8 @@ import torch  # noqa: E402
 
 from scene_synth_ros.categories import ROOM_TYPES  # noqa: E402
 from scene_synth_ros.corpus.generate import generate_corpus  # noqa: E402
-from scene_synth_ros.models.examples import ExampleSource  # noqa: E402
-from scene_synth_ros.models.orientation import decode_angle  # noqa: E402
+from scene_synth_ros.networks.examples import ExampleSource  # noqa: E402
+from scene_synth_ros.networks.orientation import decode_angle  # noqa: E402
 from scene_synth_ros.synth import Synthesizer  # noqa: E402
 
 HELD_OUT_SEED = 5

@@ -15,6 +15,8 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 import math
 
+from .errors import UnknownRoomType
+
 ROOM_TYPES = ('bedroom', 'living', 'office', 'bathroom')
 
 # Rooms per type after the paper's filtering (section 4).
@@ -267,7 +269,7 @@ def resolve_room_type(name: str) -> str:
     aliases = {'living room': 'living', 'livingroom': 'living', 'bed room': 'bedroom'}
     key = aliases.get(key, key)
     if key not in ROOM_TYPES:
-        raise KeyError(f'unknown room type {name!r}; expected one of {", ".join(ROOM_TYPES)}')
+        raise UnknownRoomType(f'unknown room type {name!r}; expected one of {", ".join(ROOM_TYPES)}')
     return key
 
 

@@ -9,21 +9,19 @@ import sys
 import time
 
 from .categories import ROOM_TYPES, resolve_room_type
+from .errors import SceneSynthError
 
 EXIT_BAD_INPUT = 2
 
 
-class UserError(Exception):
+class UserError(SceneSynthError):
     """Bad input from the user: printed as one sentence, exit code 2, no traceback."""
 
 
 def _room_types(value: str) -> list[str]:
     if value == 'all':
         return list(ROOM_TYPES)
-    try:
-        return [resolve_room_type(value)]
-    except KeyError as e:
-        raise UserError(str(e.args[0])) from None
+    return [resolve_room_type(value)]
 
 
 def _load(path: str):
@@ -399,7 +397,7 @@ def _synthesizer(args):
 
 
 def _run_synthesis(fn, *a):
-    from .models.bundle import BundleError
+    from .networks.bundle import BundleError
     from .synth import SynthesisError
     try:
         return fn(*a)
@@ -521,7 +519,7 @@ def cmd_export(args) -> int:
 
 # ---- training ----------------------------------------------------------------------------
 def _pipeline_config(path: str | None, device: str | None = None):
-    from .models.config import PipelineConfig
+    from .networks.config import PipelineConfig
     from .paths import default_config_path
     path = path or str(default_config_path())
     try:
@@ -538,8 +536,8 @@ def _pipeline_config(path: str | None, device: str | None = None):
 
 
 def cmd_train(args) -> int:
-    from .models.config import resolve_device
-    from .models.train import train
+    from .networks.config import resolve_device
+    from .networks.train import train
     from .paths import weights_dir
     cfg = _pipeline_config(args.config, args.device)
     if args.threads is not None:
@@ -562,8 +560,8 @@ def cmd_train(args) -> int:
 
 
 def cmd_components(args) -> int:
-    from .models.bundle import BundleError, bundle_path, load_bundle
-    from .models.train import format_components
+    from .networks.bundle import BundleError, bundle_path, load_bundle
+    from .networks.train import format_components
     from .paths import weights_dir
     tables = {}
     for rt in _room_types(args.room_type):
@@ -621,7 +619,7 @@ def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
-    except UserError as e:
+    except SceneSynthError as e:
         print(f'scene-synth: {e}', file=sys.stderr)
         return EXIT_BAD_INPUT
     except KeyboardInterrupt:

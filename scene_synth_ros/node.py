@@ -32,10 +32,9 @@ from std_msgs.msg import ColorRGBA, String
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker, MarkerArray
 
+from .errors import SceneSynthError
 from .markers import MeshCache, scene_markers
-from .models.bundle import BundleError
 from .server import PARAMETERS, ConfigError, SceneServer, Served, ServerConfig, Status
-from .synth import SynthesisError
 
 NODE_NAME = 'scene_synth_node'
 EXIT_STARTUP_FAILED = 1
@@ -48,7 +47,7 @@ _KINDS = {'cube': Marker.CUBE, 'mesh': Marker.MESH_RESOURCE, 'text': Marker.TEXT
           'triangle_list': Marker.TRIANGLE_LIST}
 
 
-class StartupError(Exception):
+class StartupError(SceneSynthError):
     """The node cannot serve (bad weights, bad parameter): one sentence, exit non-zero."""
 
 
@@ -90,7 +89,7 @@ class SceneSynthNode(Node):
         try:
             self.server = SceneServer(config, self._publish_room, self._publish_diagnostics,
                                       self._log)
-        except (BundleError, SynthesisError, ConfigError) as e:
+        except SceneSynthError as e:
             raise StartupError(str(e)) from None
         self._meshes = MeshCache(Path(config.mesh_dir).expanduser() if config.mesh_dir
                                  else Path.home() / '.cache' / 'scene_synth_ros' / 'meshes')

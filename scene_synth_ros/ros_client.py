@@ -27,6 +27,8 @@ from std_msgs.msg import String
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import MarkerArray
 
+from .errors import SceneSynthError
+
 DEFAULT_NODE = '/scene_synth_node'
 LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
@@ -34,7 +36,7 @@ RELIABLE = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
 TOPICS = {'scene': String, 'markers': MarkerArray, 'poses': PoseArray}
 
 
-class ClientError(Exception):
+class ClientError(SceneSynthError):
     """The node did not answer as asked: one sentence."""
 
 

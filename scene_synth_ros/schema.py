@@ -35,6 +35,7 @@ import shapely
 
 from . import catalog
 from .categories import CATEGORIES, ROOM_SIZE_CAP, ROOM_TYPES, resolve_room_type, room_spec
+from .errors import SceneSynthError, UnknownRoomType
 from .paths import schema_dir
 from .scene import Opening, PlacedObject, Room, Scene, ccw
 
@@ -61,7 +62,7 @@ FLOOR_TOLERANCE = 0.01          # m: an object's centre may lie this far outside
 SIZE_SLACK = 0.5                # CategoryInfo.size_is_plausible slack
 
 
-class SceneValidationError(ValueError):
+class SceneValidationError(SceneSynthError, ValueError):
     """Invalid layout or scene. ``path`` names the field (``""``: the whole document)."""
 
     def __init__(self, message: str, path: str = ''):
@@ -277,7 +278,7 @@ def _check_schema(d: Any, key: str, prefix: str = '') -> None:
 def _room_type(value: str, path: str) -> str:
     try:
         return resolve_room_type(value)
-    except KeyError:
+    except UnknownRoomType:
         raise SceneValidationError(
             f'{path} {value!r} is not a known room type (expected one of '
             f'{", ".join(ROOM_TYPES)}, or an alias such as \'living room\')', path) from None

@@ -22,13 +22,12 @@ import time
 from typing import Any, Callable
 
 from .categories import ROOM_TYPES, resolve_room_type
-from .models.bundle import BundleError
+from .errors import SceneSynthError, UnknownRoomType
 from .markers import MARKER_STYLES
-from .models.config import resolve_device
+from .networks.config import resolve_device
 from .scene import PlacedObject, Scene
-from .schema import SceneValidationError, dump_scene, parse_room_layout, write_atomic
-from .synth import (MODULES, SynthConfig, Synthesizer, SynthesisCancelled, SynthesisError,
-                    check_room_fits)
+from .schema import dump_scene, parse_room_layout, write_atomic
+from .synth import (MODULES, SynthConfig, Synthesizer, SynthesisCancelled, check_room_fits)
 
 OK, WARN, ERROR = 0, 1, 2               # the levels of diagnostic_msgs/DiagnosticStatus
 DEVICES = ('auto', 'cpu', 'cuda')
@@ -79,7 +78,7 @@ PARAMETERS: dict[str, tuple[str, Any, bool]] = {
 }
 
 
-class ConfigError(ValueError):
+class ConfigError(SceneSynthError, ValueError):
     """A parameter value that cannot be used, said in one sentence."""
 
 
@@ -107,7 +106,7 @@ def check(name: str, value: Any) -> Any:
     if name == 'room_type':
         try:
             return resolve_room_type(value)
-        except KeyError:
+        except UnknownRoomType:
             raise ConfigError(f'room_type {value!r} is not one of {", ".join(ROOM_TYPES)}') \
                 from None
     if isinstance(limits, tuple) and value not in limits:
@@ -236,7 +235,7 @@ class SceneServer:
         if (new.weights_dir, new.device) != (self.config.weights_dir, self.config.device):
             try:
                 synth = self._load(new.weights_dir, new.device)
-            except (BundleError, SynthesisError) as e:
+            except SceneSynthError as e:
                 raise ConfigError(f'weights_dir {new.weights_dir!r} cannot be used: {e}') \
                     from None
         with self._lock:
@@ -253,7 +252,7 @@ class SceneServer:
         try:
             scene = parse_room_layout(payload)
             check_room_fits(scene.room)
-        except (SceneValidationError, SynthesisError) as e:
+        except SceneSynthError as e:
             self._reject(f'{source}: {e}')
             return False
         with self._lock:
@@ -360,7 +359,7 @@ class SceneServer:
         except SynthesisCancelled:
             self._supersede(job)
             return
-        except (SynthesisError, BundleError) as e:
+        except SceneSynthError as e:
             self._reject(f'{"room_layout" if job.kind == "layout" else job.kind}: {e}')
             job.message = str(e)
             return
@@ -377,7 +376,7 @@ class SceneServer:
         t0 = time.perf_counter()
         try:
             obj = synth.next_object(base, seed)
-        except (SynthesisError, BundleError) as e:
+        except SceneSynthError as e:
             job.message = str(e)
             return
         if obj is None:

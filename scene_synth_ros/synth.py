@@ -28,21 +28,22 @@ import torch
 
 from . import catalog
 from .categories import CATEGORIES, resolve_room_type, room_spec
+from .errors import SceneSynthError
 from .geometry import (FLOOR_TOLERANCE, MIN_SUPPORT, door_zone, doors_connected, enters_zone,
                        overlaps_any, support_fraction)
-from .models.bundle import Bundle, bundle_path, load_bundle
-from .models.config import resolve_device
-from .models.category import category_probabilities
-from .models.examples import local_frame, room_frame
-from .models.location import location_distribution, sample_pixel
-from .models.orientation import decode_angle, snap_angle
+from .networks.bundle import Bundle, bundle_path, load_bundle
+from .networks.config import resolve_device
+from .networks.category import category_probabilities
+from .networks.examples import local_frame, room_frame
+from .networks.location import location_distribution, sample_pixel
+from .networks.orientation import decode_angle, snap_angle
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer
 from .scene import PlacedObject, Room, Scene, box_corners
 
 MODULES = ('render', 'category', 'location', 'orientation', 'dimensions', 'insertion')
 
 
-class SynthesisError(Exception):
+class SynthesisError(SceneSynthError):
     """A room the synthesizer cannot work on, said in one sentence."""
 
 
@@ -94,10 +95,7 @@ def check_room_fits(room: Room) -> None:
     """SynthesisError unless the smallest first-tier model of the room's type fits on its
     floor outside the door zones (a narrow strip passes the schema's area check but can
     hold nothing)."""
-    try:
-        spec = room_spec(room.room_type)
-    except KeyError as e:
-        raise SynthesisError(str(e.args[0])) from None
+    spec = room_spec(room.room_type)
     small = min((v for c in spec.categories if c.tier == 'first'
                  for v in catalog.variants(c.name)), key=lambda v: v.width * v.depth)
     short, long_ = sorted((small.width, small.depth))
@@ -193,10 +191,7 @@ class Synthesizer:
         return self._renderers[resolution]
 
     def _context(self, room: Room, seed: int, objects=()) -> _Context:
-        try:
-            rt = resolve_room_type(room.room_type)
-        except KeyError as e:
-            raise SynthesisError(str(e.args[0])) from None
+        rt = resolve_room_type(room.room_type)
         spec = room_spec(rt)
         for o in objects:
             if o.category not in spec:

@@ -5,7 +5,7 @@ from pathlib import Path
 import pytest
 import torch
 
-from scene_synth_ros.models.config import (EncoderConfig, ModelConfig, ModuleSchedule,
+from scene_synth_ros.networks.config import (EncoderConfig, ModelConfig, ModuleSchedule,
                                            PipelineConfig, TrainConfig)
 
 
@@ -25,7 +25,7 @@ def tiny_config(steps: int = 4) -> PipelineConfig:
 @pytest.fixture(scope='session')
 def tiny_weights(tmp_path_factory) -> Path:
     """A weights directory with tiny, briefly trained bundles for bathroom and bedroom."""
-    from scene_synth_ros.models.train import train
+    from scene_synth_ros.networks.train import train
     root = tmp_path_factory.mktemp('tiny')
     threads = torch.get_num_threads()
     try:

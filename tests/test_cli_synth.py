@@ -2,7 +2,7 @@
 import json
 
 from scene_synth_ros.geometry import check_scene
-from scene_synth_ros.models.bundle import load_bundle
+from scene_synth_ros.networks.bundle import load_bundle
 from scene_synth_ros.schema import load_scene
 
 from test_cli import ROOT, run

@@ -17,7 +17,7 @@ from scene_synth_ros.evaluation import similarity as sim
 from scene_synth_ros.evaluation.perturb import perturb_all, perturb_scene
 from scene_synth_ros.evaluation.run import (EvalConfig, EvaluationError, finite_numbers,
                                             prepare_out_dir, run_evaluation)
-from scene_synth_ros.models.bundle import bundle_path, load_bundle
+from scene_synth_ros.networks.bundle import bundle_path, load_bundle
 from scene_synth_ros.paths import weights_dir
 from scene_synth_ros.scene import Room, Scene
 

@@ -6,7 +6,7 @@ import threading
 
 import pytest
 
-from scene_synth_ros.models.bundle import BundleError
+from scene_synth_ros.networks.bundle import BundleError
 from scene_synth_ros.paths import examples_dir, weights_dir
 from scene_synth_ros.schema import parse_room_layout, parse_scene
 from scene_synth_ros.server import (ERROR, OK, WARN, ConfigError, SceneServer, ServerConfig,

@@ -8,7 +8,7 @@ import torch
 from scene_synth_ros.categories import ROOM_TYPES
 from scene_synth_ros.corpus.generate import empty_room, generate_room
 from scene_synth_ros.geometry import check_scene, door_zone
-from scene_synth_ros.models.bundle import BundleError, load_bundle
+from scene_synth_ros.networks.bundle import BundleError, load_bundle
 from scene_synth_ros.paths import weights_dir
 from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
 from scene_synth_ros.synth import SynthConfig, SynthesisError, Synthesizer

@@ -24,9 +24,9 @@ import torch
 from torch import nn
 from tqdm import tqdm
 
-from ..models.blocks import ResNetEncoder
-from ..models.config import EncoderConfig
-from ..models.examples import room_frame, rotate_scene
+from ..networks.blocks import ResNetEncoder
+from ..networks.config import EncoderConfig
+from ..networks.examples import room_frame, rotate_scene
 from ..render import TopDownRenderer
 from ..scene import Scene
 

@@ -14,11 +14,12 @@ from typing import Callable, Sequence
 import numpy as np
 
 from ..categories import ROOM_TYPES, resolve_room_type
+from ..errors import SceneSynthError
 
 EvalEcho = Callable[[str], None]
 
 
-class EvaluationError(Exception):
+class EvaluationError(SceneSynthError):
     """A problem with the evaluation's input, said in one sentence."""
 
 
@@ -97,7 +98,7 @@ def prepare_out_dir(out: str | Path) -> Path:
 def _load_bundles(room_types: Sequence[str], weights_dir) -> dict:
     """Per room type, the shipped bundle's input resolution and component metrics; bad or
     missing weights are found here, before any long computation."""
-    from ..models.bundle import BundleError, bundle_path, load_bundle
+    from ..networks.bundle import BundleError, bundle_path, load_bundle
     from ..paths import weights_dir as default_weights
     root = Path(weights_dir) if weights_dir else default_weights()
     out = {}
@@ -219,10 +220,7 @@ def run_evaluation(room_types: Sequence[str], cfg: EvalConfig, out: str | Path,
     import torch
 
     from . import report, speed
-    try:
-        rts = [resolve_room_type(rt) for rt in room_types]
-    except KeyError as e:
-        raise EvaluationError(str(e.args[0])) from None
+    rts = [resolve_room_type(rt) for rt in room_types]
     try:
         cfg.validate()
     except ValueError as e:

@@ -31,7 +31,7 @@ from typing import Sequence
 
 import numpy as np
 
-from ..models.examples import room_axis_yaw
+from ..networks.examples import room_axis_yaw
 from ..scene import Scene
 from .parallel import pmap
 

@@ -8,14 +8,14 @@ import torch
 
 from scene_synth_ros.categories import room_spec
 from scene_synth_ros.corpus.generate import generate_room
-from scene_synth_ros.models.bundle import (BundleError, build_networks, load_bundle,
+from scene_synth_ros.networks.bundle import (BundleError, build_networks, load_bundle,
                                            save_bundle)
-from scene_synth_ros.models.config import PipelineConfig, resolve_device
-from scene_synth_ros.models.dimensions import box_sdf
-from scene_synth_ros.models.examples import (ExampleSource, insertion_order, placeable,
+from scene_synth_ros.networks.config import PipelineConfig, resolve_device
+from scene_synth_ros.networks.dimensions import box_sdf
+from scene_synth_ros.networks.examples import (ExampleSource, insertion_order, placeable,
                                              room_axis_yaw, room_frame, rotate_scene)
-from scene_synth_ros.models.location import location_distribution, sample_pixel
-from scene_synth_ros.models.orientation import decode_angle, is_snapped, snap_angle
+from scene_synth_ros.networks.location import location_distribution, sample_pixel
+from scene_synth_ros.networks.orientation import decode_angle, is_snapped, snap_angle
 from scene_synth_ros.paths import config_dir
 from scene_synth_ros.render import COS, SIN, Frame, TopDownRenderer
 from scene_synth_ros.scene import Room, Scene
@@ -255,7 +255,7 @@ def test_box_sdf_sign_and_gradient():
 
 # ---- training and bundles ----------------------------------------------------------------------
 def test_training_resumes_exactly(tmp_path):
-    from scene_synth_ros.models.train import ExampleSource as _ES, load_corpus, train_module
+    from scene_synth_ros.networks.train import ExampleSource as _ES, load_corpus, train_module
     cfg = tiny_config(steps=4)
     corpus = load_corpus('bathroom', cfg, workers=1)
     src = _ES('bathroom', corpus.train, 64, 64)

@@ -16,6 +16,7 @@ import torch
 from torch import nn
 
 from ..categories import resolve_room_type, room_spec
+from ..errors import SceneSynthError
 from ..render import num_channels
 from .category import CategoryModel
 from .config import ModelConfig, PipelineConfig
@@ -27,7 +28,7 @@ FORMAT = 1
 NETWORKS = ('category', 'location', 'orientation', 'snap', 'dimensions')
 
 
-class BundleError(Exception):
+class BundleError(SceneSynthError):
     """A weights file that is missing, unreadable or does not match the code."""
 
 
