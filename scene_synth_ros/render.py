@@ -22,6 +22,14 @@ and rotated by ``yaw``, sampled by ``N x N`` pixels of ``m = extent / N`` metres
 ``centre + R(yaw) (u, v)``. The row index grows with local +y: show images with
 ``origin='lower'`` to see them the way the world is drawn.
 
+The room's frame (``Frame.for_room``, the global view every module sees and the only
+definition of it): the room is seen in its own axes, those of its longest wall with the
+wall's direction reduced to [-45, 45) degrees (``room_axis_yaw``; 0 for an axis-aligned room),
+centred on its bounding box in those axes, over the room type's square of
+``ROOM_SIZE_CAP`` metres. A room fits iff that bounding box fits in the square
+(``RoomDoesNotFit`` otherwise); layout validation asks the same question through
+``room_frame_box``. Local views (``Frame.local``) have the same scale, centred at a point.
+
 Pixel rule: a pixel belongs to a shape iff its centre lies inside the shape or on its boundary
 (closed shapes; a tolerance of ``EPS_PX`` pixel absorbs floating-point rounding, so a centre
 exactly on an edge counts as inside whatever rotation or whole-pixel shift produced it).
@@ -53,6 +61,7 @@ from typing import Iterable
 import numpy as np
 
 from .categories import ROOM_SIZE_CAP, resolve_room_type, room_spec
+from .errors import SceneSynthError, number, with_article
 from .scene import Room, Scene
 
 # Channel indices.
@@ -71,6 +80,7 @@ HEIGHT_SCALE = 3.0        # metres: the HEIGHT channel holds top height / HEIGHT
 WALL_THICKNESS = 0.15     # metres of wall drawn outside the floor outline (at least 1 pixel)
 OPENING_DEPTH = 0.15      # metres a door/window rectangle reaches on each side of its wall
 EPS_PX = 1e-6             # pixels: boundary tolerance of the pixel-centre rule
+FIT_TOLERANCE = 1e-6      # metres a room may exceed its square by (rounding of its vertices)
 DEFAULT_RESOLUTION = 64
 
 
@@ -102,6 +112,56 @@ def category_channel(room_type: str, category: str) -> int:
 # Frames and coordinate conversions
 # --------------------------------------------------------------------------------------------
 
+def room_axis_yaw(room: Room) -> float:
+    """Direction of the room's longest wall reduced to [-45, 45) degrees: the yaw of the
+    room's frame (0 for an axis-aligned room; the first of equally long walls decides)."""
+    wall = max(room.walls, key=lambda w: w.length)
+    d = wall.direction
+    q = math.pi / 2
+    return (math.atan2(d[1], d[0]) + q / 2) % q - q / 2
+
+
+@dataclass(frozen=True)
+class RoomFrameBox:
+    """A room's bounding box in its own axes and the square its type may cover."""
+
+    room_type: str
+    yaw: float
+    centre: tuple[float, float]    # world coordinates of the box centre
+    span: tuple[float, float]      # metres along the frame's u and v axes
+    cap: float                     # side of the room type's square, metres
+
+    @property
+    def fits(self) -> bool:
+        return max(self.span) <= self.cap + FIT_TOLERANCE
+
+
+def room_frame_box(room: Room) -> RoomFrameBox:
+    """The room measured in its frame's axes (see the module docstring)."""
+    rt = resolve_room_type(room.room_type)
+    yaw = room_axis_yaw(room)
+    c, s = math.cos(yaw), math.sin(yaw)      # exactly 1 and 0 for an axis-aligned room
+    x, y = np.asarray(room.floor, dtype=float).T
+    u, v = x * c + y * s, -x * s + y * c
+    cu, cv = (u.min() + u.max()) / 2.0, (v.min() + v.max()) / 2.0
+    centre = (float(cu * c - cv * s), float(cu * s + cv * c))
+    return RoomFrameBox(rt, yaw, centre,
+                        (float(u.max() - u.min()), float(v.max() - v.min())), ROOM_SIZE_CAP[rt])
+
+
+class RoomDoesNotFit(SceneSynthError, ValueError):
+    """A room larger, in its own axes, than the square its type's images cover."""
+
+    def __init__(self, box: RoomFrameBox, subject: str | None = None):
+        self.box = box
+        rt = box.room_type
+        long_, short = (number(v) for v in sorted(box.span, reverse=True))
+        cap = number(box.cap)
+        super().__init__(f'{subject or "the " + rt} is {long_} m x {short} m along its walls, '
+                         f'which does not fit the {cap} m x {cap} m square '
+                         f'{with_article(rt)} may cover')
+
+
 @dataclass(frozen=True)
 class Frame:
     """The square of the world an image covers (see the module docstring for the geometry)."""
@@ -125,18 +185,12 @@ class Frame:
 
     @classmethod
     def for_room(cls, room: Room, resolution: int = DEFAULT_RESOLUTION) -> 'Frame':
-        """The global view: centred on the room's bounding box, yaw 0, side = the room type's
-        size cap. Raises ValueError if the room does not fit in that square."""
-        rt = resolve_room_type(room.room_type)
-        cap = ROOM_SIZE_CAP[rt]
-        xs = [p[0] for p in room.floor]
-        ys = [p[1] for p in room.floor]
-        w, h = max(xs) - min(xs), max(ys) - min(ys)
-        if w > cap + 1e-9 or h > cap + 1e-9:
-            raise ValueError(f'the {rt} spans {w:.2f} x {h:.2f} m, which does not fit in the '
-                             f'{cap:g} m square a {rt} image covers')
-        return cls(((min(xs) + max(xs)) / 2.0, (min(ys) + max(ys)) / 2.0), 0.0, cap,
-                   resolution)
+        """The room's frame (see the module docstring); ``RoomDoesNotFit`` if the room is
+        larger than its type's square in its own axes."""
+        box = room_frame_box(room)
+        if not box.fits:
+            raise RoomDoesNotFit(box)
+        return cls(box.centre, box.yaw, box.cap, resolution)
 
     @classmethod
     def local(cls, room_type: str, point: Iterable[float], yaw: float,
@@ -377,12 +431,6 @@ class TopDownRenderer:
     def num_channels(self, room_type: str) -> int:
         return num_channels(room_type)
 
-    def global_frame(self, room: Room) -> Frame:
-        return Frame.for_room(room, self.resolution)
-
-    def local_frame(self, room_type: str, point, yaw: float) -> Frame:
-        return Frame.local(room_type, point, yaw, self.resolution)
-
     def static_layers(self, room: Room, frame: Frame) -> np.ndarray:
         """Cached (4, N, N) room, wall, door, window masks. Do not modify the result."""
         rkey = _room_key(room)
@@ -398,7 +446,8 @@ class TopDownRenderer:
         return layers
 
     def render(self, scene: Scene, frame: Frame | None = None) -> np.ndarray:
-        """The image of ``scene`` in ``frame`` (default: the room's global view)."""
+        """The image of ``scene`` in ``frame`` (default: the room's frame, the global view
+        the category and location modules see)."""
         room = scene.room
         if frame is None:
             frame = Frame.for_room(room, self.resolution)
@@ -439,14 +488,3 @@ class TopDownRenderer:
         orientation and dimension modules see for an object placed at ``point``."""
         return self.render(scene, Frame.local(scene.room.room_type, point, yaw,
                                               self.resolution))
-
-    def render_tensor(self, scene: Scene, frame: Frame | None = None, device=None):
-        """``render`` as a torch tensor (C, N, N)."""
-        return to_tensor(self.render(scene, frame), device)
-
-
-def to_tensor(image: np.ndarray, device=None):
-    """A numpy image (or batch of images) as a float32 torch tensor."""
-    import torch
-    t = torch.from_numpy(np.ascontiguousarray(image, dtype=np.float32))
-    return t if device is None else t.to(device)

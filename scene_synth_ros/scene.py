@@ -302,3 +302,21 @@ class Scene:
         return cls(Room.from_dict(d['room']),
                    [PlacedObject.from_dict(o) for o in d.get('objects', [])],
                    dict(d.get('meta', {})))
+
+    def moved(self, yaw: float, offset: Iterable[float] = (0.0, 0.0)) -> 'Scene':
+        """The scene under a rigid motion: turned by ``yaw`` about the origin, then shifted by
+        ``offset`` (x, y). Heights, sizes, supports and ``meta`` are kept."""
+        c, s = math.cos(yaw), math.sin(yaw)
+        ox, oy = (float(v) for v in offset)
+
+        def move(p) -> tuple[float, float]:
+            return (c * p[0] - s * p[1] + ox, s * p[0] + c * p[1] + oy)
+
+        room = self.room
+        room = Room(room.room_type, tuple(move(p) for p in room.floor), room.wall_height,
+                    tuple(replace(o, position=move(o.position)) for o in room.doors),
+                    tuple(replace(o, position=move(o.position)) for o in room.windows))
+        objects = [replace(o, position=(*move(o.position), o.position[2]),
+                           yaw=math.remainder(o.yaw + yaw, 2 * math.pi))
+                   for o in self.objects]
+        return Scene(room, objects, dict(self.meta))

@@ -34,9 +34,10 @@ import numpy as np
 import shapely
 
 from . import catalog
-from .categories import CATEGORIES, ROOM_SIZE_CAP, ROOM_TYPES, resolve_room_type, room_spec
-from .errors import SceneSynthError, UnknownRoomType
+from .categories import CATEGORIES, ROOM_TYPES, resolve_room_type, room_spec
+from .errors import SceneSynthError, UnknownRoomType, number, with_article
 from .paths import schema_dir
+from .render import RoomDoesNotFit, room_frame_box
 from .scene import Opening, PlacedObject, Room, Scene, ccw
 
 __all__ = [
@@ -91,21 +92,6 @@ def _path_of(prefix: str, parts: Iterable[str | int]) -> str:
 def _name(path: str) -> str:
     """How a path reads in a message: the path, or 'the payload' for the document."""
     return path or 'the payload'
-
-
-def _a(noun: str) -> str:
-    """The noun with its indefinite article ('a bedroom', 'an office')."""
-    return f'{"an" if noun[:1] in "aeiou" else "a"} {noun}'
-
-
-def _num(x: float) -> str:
-    if isinstance(x, float):
-        if math.isnan(x):
-            return 'NaN'
-        if math.isinf(x):
-            return 'Infinity' if x > 0 else '-Infinity'
-    s = f'{float(x):.3f}'.rstrip('0').rstrip('.')
-    return '0' if s in ('-0', '') else s
 
 
 def _json_type(value: Any) -> str:
@@ -182,7 +168,7 @@ def _load(text_or_dict: Any) -> dict[str, Any]:
 def _check_finite(value: Any, path: str = '') -> None:
     """NaN and +-Infinity are not JSON (Python's json reads them): report the first one."""
     if isinstance(value, float) and not math.isfinite(value):
-        raise SceneValidationError(f'{_name(path)} must be a finite number, got {_num(value)}',
+        raise SceneValidationError(f'{_name(path)} must be a finite number, got {number(value)}',
                                    path)
     if isinstance(value, int) and not isinstance(value, bool) and abs(value) > 1e300:
         raise SceneValidationError(
@@ -259,7 +245,7 @@ def _schema_error_message(error, prefix: str) -> tuple[str, str]:
               'exclusiveMinimum': 'greater than', 'exclusiveMaximum': 'less than'}
     if kw in bounds:
         unit = _unit(path)
-        return path, f'{name} must be {bounds[kw]} {_num(val)}{unit}, got {_num(inst)}{unit}'
+        return path, f'{name} must be {bounds[kw]} {number(val)}{unit}, got {number(inst)}{unit}'
     text = ' '.join(str(error.message).split())
     return path, f'{name} is invalid: {text}'
 
@@ -284,7 +270,7 @@ def _room_type(value: str, path: str) -> str:
             f'{", ".join(ROOM_TYPES)}, or an alias such as \'living room\')', path) from None
 
 
-def _check_floor(points: list[list[float]], room_type: str, prefix: str) -> None:
+def _check_floor(points: list[list[float]], prefix: str) -> None:
     path = _join(prefix, 'floor')
     pts = [(float(x), float(y)) for x, y in points]
     if len(pts) > 1 and math.dist(pts[0], pts[-1]) < MIN_VERTEX_SPACING:
@@ -297,7 +283,7 @@ def _check_floor(points: list[list[float]], room_type: str, prefix: str) -> None
         if math.dist(pts[i], pts[i - 1]) < MIN_VERTEX_SPACING:
             vpath = _join(path, i)
             raise SceneValidationError(
-                f'{vpath} repeats the previous vertex ({_num(pts[i][0])}, {_num(pts[i][1])})',
+                f'{vpath} repeats the previous vertex ({number(pts[i][0])}, {number(pts[i][1])})',
                 vpath)
     arr = np.asarray(pts)
     centred = arr - arr.mean(axis=0)
@@ -312,7 +298,7 @@ def _check_floor(points: list[list[float]], room_type: str, prefix: str) -> None
         if '[' in reason:
             coords = reason[reason.index('[') + 1:reason.rindex(']')].split()
             try:
-                where = f' near ({_num(float(coords[0]))}, {_num(float(coords[1]))})'
+                where = f' near ({number(float(coords[0]))}, {number(float(coords[1]))})'
             except (ValueError, IndexError):
                 where = ''
         raise SceneValidationError(
@@ -320,15 +306,17 @@ def _check_floor(points: list[list[float]], room_type: str, prefix: str) -> None
             f'the vertices in order around the room', path)
     if poly.area < MIN_FLOOR_AREA:
         raise SceneValidationError(
-            f'{path} encloses {_num(poly.area)} m², less than the {_num(MIN_FLOOR_AREA)} m² '
+            f'{path} encloses {number(poly.area)} m², less than the {number(MIN_FLOOR_AREA)} m² '
             f'minimum of a room', path)
-    x0, y0, x1, y1 = poly.bounds
-    cap = ROOM_SIZE_CAP[room_type]
-    if x1 - x0 > cap + 1e-6 or y1 - y0 > cap + 1e-6:
-        raise SceneValidationError(
-            f'{path} is {_num(x1 - x0)} m x {_num(y1 - y0)} m, which does not fit the '
-            f'{_num(cap)} m x {_num(cap)} m square {_a(room_type)} may cover (ROOM_SIZE_CAP)',
-            path)
+
+
+def _check_fits(room: Room, prefix: str) -> None:
+    """The room must fit its type's square in its own axes: the question the networks'
+    frame asks (``render.room_frame_box``), so every room accepted here can be furnished."""
+    box = room_frame_box(room)
+    if not box.fits:
+        path = _join(prefix, 'floor')
+        raise SceneValidationError(str(RoomDoesNotFit(box, path)), path)
 
 
 def _check_openings(room: Room, prefix: str) -> None:
@@ -338,10 +326,10 @@ def _check_openings(room: Room, prefix: str) -> None:
     for path, op in named:
         top = op.sill + op.height
         if top > room.wall_height + 1e-9:
-            what = (f'sill {_num(op.sill)} m + height {_num(op.height)} m'
-                    if op.kind == 'window' else f'height {_num(op.height)} m')
+            what = (f'sill {number(op.sill)} m + height {number(op.height)} m'
+                    if op.kind == 'window' else f'height {number(op.height)} m')
             raise SceneValidationError(
-                f'{path} reaches {_num(top)} m ({what}), above the {_num(room.wall_height)} m '
+                f'{path} reaches {number(top)} m ({what}), above the {number(room.wall_height)} m '
                 f'wall height', path)
         wall = room.wall_of(op, tol=OPENING_TOLERANCE)
         if wall is None:
@@ -349,7 +337,7 @@ def _check_openings(room: Room, prefix: str) -> None:
             dist = near[0].distance_to(op.position)
             if dist > OPENING_TOLERANCE:
                 raise SceneValidationError(
-                    f'{path} is not on any wall: its centre is {_num(dist)} m from the '
+                    f'{path} is not on any wall: its centre is {number(dist)} m from the '
                     f'nearest wall', path)
             on_line = [w for w in near if w.distance_to(op.position) <= OPENING_TOLERANCE]
             longest = max(on_line, key=lambda w: w.length)
@@ -357,10 +345,10 @@ def _check_openings(room: Room, prefix: str) -> None:
                      f'{_join(_join(prefix, "floor"), (longest.index + 1) % len(room.walls))}')
             if op.width > longest.length + OPENING_TOLERANCE:
                 raise SceneValidationError(
-                    f'{path} is wider ({_num(op.width)} m) than {wname} '
-                    f'({_num(longest.length)} m long)', path)
+                    f'{path} is wider ({number(op.width)} m) than {wname} '
+                    f'({number(longest.length)} m long)', path)
             raise SceneValidationError(
-                f'{path} runs past the end of {wname}: its {_num(op.width)} m width must lie '
+                f'{path} runs past the end of {wname}: its {number(op.width)} m width must lie '
                 f'on one wall', path)
         off = wall.offset_of(op.position)
         lo, hi = off - op.width / 2.0, off + op.width / 2.0
@@ -368,7 +356,7 @@ def _check_openings(room: Room, prefix: str) -> None:
             overlap = min(hi, ohi) - max(lo, olo)
             if other_wall == wall.index and overlap > OPENING_TOLERANCE:
                 raise SceneValidationError(
-                    f'{path} overlaps {other_path} on the same wall by {_num(overlap)} m',
+                    f'{path} overlaps {other_path} on the same wall by {number(overlap)} m',
                     path)
         placed.append((path, wall.index, lo, hi))
 
@@ -376,11 +364,12 @@ def _check_openings(room: Room, prefix: str) -> None:
 def _build_room(d: dict[str, Any], prefix: str) -> Room:
     """The Room of an (already schema-valid) room dict, after the geometric checks."""
     room_type = _room_type(d['room_type'], _join(prefix, 'room_type'))
-    _check_floor(d['floor'], room_type, prefix)
+    _check_floor(d['floor'], prefix)
     room = Room(room_type, ccw(d['floor']),
                 float(d.get('wall_height', DEFAULT_WALL_HEIGHT)),
                 tuple(Opening.from_dict('door', o) for o in d.get('doors', [])),
                 tuple(Opening.from_dict('window', o) for o in d.get('windows', [])))
+    _check_fits(room, prefix)
     _check_openings(room, prefix)
     return room
 
@@ -388,7 +377,7 @@ def _build_room(d: dict[str, Any], prefix: str) -> Room:
 # ----------------------------------------------------------------------------- object checks
 
 def _range(lo: float, hi: float) -> str:
-    return f'{_num(lo * (1 - SIZE_SLACK))} to {_num(hi * (1 + SIZE_SLACK))} m'
+    return f'{number(lo * (1 - SIZE_SLACK))} to {number(hi * (1 + SIZE_SLACK))} m'
 
 
 def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str) -> list[PlacedObject]:
@@ -405,30 +394,30 @@ def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str) -> list
                 f'{cpath} {category!r} is not a known category', cpath)
         if category not in spec:
             raise SceneValidationError(
-                f'{cpath} {category!r} is not a category of {_a(room.room_type)} '
-                f'({_a(room.room_type)} may hold: {", ".join(spec.names)})', cpath)
+                f'{cpath} {category!r} is not a category of {with_article(room.room_type)} '
+                f'({with_article(room.room_type)} may hold: {", ".join(spec.names)})', cpath)
         info = CATEGORIES[category]
         w, dep, h = (float(v) for v in d['size'])
         if not info.size_is_plausible(w, dep, h, SIZE_SLACK):
             spath = _join(path, 'size')
-            bad = [f'{label} {_num(v)} m is outside {_range(*rng)}'
+            bad = [f'{label} {number(v)} m is outside {_range(*rng)}'
                    for label, v, rng in (('width', w, info.width), ('depth', dep, info.depth),
                                          ('height', h, info.height))
                    if not rng[0] * (1 - SIZE_SLACK) <= v <= rng[1] * (1 + SIZE_SLACK)]
             raise SceneValidationError(
-                f'{spath} is not plausible for {_a(category)}: {"; ".join(bad)}', spath)
+                f'{spath} is not plausible for {with_article(category)}: {"; ".join(bad)}', spath)
         x, y, z = (float(v) for v in d['position'])
         if z < -FLOOR_TOLERANCE:
             zpath = _join(_join(path, 'position'), 2)
             raise SceneValidationError(
-                f'{zpath} is {_num(z)} m, below the floor (z is the bottom of the object)',
+                f'{zpath} is {number(z)} m, below the floor (z is the bottom of the object)',
                 zpath)
         outside = room.polygon.distance(shapely.Point(x, y))
         if outside > FLOOR_TOLERANCE:
             ppath = _join(path, 'position')
             raise SceneValidationError(
-                f'{ppath} is outside the floor: the centre ({_num(x)}, {_num(y)}) is '
-                f'{_num(outside)} m outside the room', ppath)
+                f'{ppath} is outside the floor: the centre ({number(x)}, {number(y)}) is '
+                f'{number(outside)} m outside the room', ppath)
         if d.get('model_id') is not None:
             mpath = _join(path, 'model_id')
             try:
@@ -438,8 +427,8 @@ def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str) -> list
                     f'{mpath} {d["model_id"]!r} is not a catalog model id', mpath) from None
             if model.category != category:
                 raise SceneValidationError(
-                    f'{mpath} {d["model_id"]!r} is {_a(model.category)} model, not '
-                    f'{_a(category)}', mpath)
+                    f'{mpath} {d["model_id"]!r} is {with_article(model.category)} model, not '
+                    f'{with_article(category)}', mpath)
         if d.get('id') is not None:
             ipath = _join(path, 'id')
             if d['id'] in seen:
@@ -456,13 +445,13 @@ def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str) -> list
         if CATEGORIES[category].tier == 'first':
             if support is not None:
                 raise SceneValidationError(
-                    f'{spath} must be absent because {_a(category)} stands on the floor (first '
+                    f'{spath} must be absent because {with_article(category)} stands on the floor (first '
                     f'tier), got {support!r}', spath)
             continue
         parents = spec.supports(category)
         if support is None:
             raise SceneValidationError(
-                f'{spath} is required because {_a(category)} stands on another object (one of '
+                f'{spath} is required because {with_article(category)} stands on another object (one of '
                 f'{", ".join(parents)})', spath)
         if support not in seen:
             raise SceneValidationError(
@@ -472,8 +461,8 @@ def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str) -> list
         parent_category = items[seen[support]]['category']
         if parent_category not in parents:
             raise SceneValidationError(
-                f'{spath} {support!r} is {_a(parent_category)}, which cannot hold '
-                f'{_a(category)} in {_a(room.room_type)} (allowed: {", ".join(parents)})', spath)
+                f'{spath} {support!r} is {with_article(parent_category)}, which cannot hold '
+                f'{with_article(category)} in {with_article(room.room_type)} (allowed: {", ".join(parents)})', spath)
 
     objects: list[PlacedObject] = []
     for d in _fill_ids(items, room):

@@ -34,7 +34,6 @@ from .geometry import (FLOOR_TOLERANCE, MIN_SUPPORT, door_zone, doors_connected,
 from .networks.bundle import Bundle, bundle_path, load_bundle
 from .networks.config import resolve_device
 from .networks.category import category_probabilities
-from .networks.examples import local_frame, room_frame
 from .networks.location import location_distribution, sample_pixel
 from .networks.orientation import decode_angle, snap_angle
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer
@@ -199,10 +198,7 @@ class Synthesizer:
                                      f'the {rt} categories the networks know')
         bundle = self.bundle(rt)
         m = bundle.config.model
-        try:
-            frame = room_frame(room, m.resolution)
-        except ValueError as e:
-            raise SynthesisError(str(e)) from None
+        frame = Frame.for_room(room, m.resolution)
         grid = Frame(frame.centre, frame.yaw, frame.extent, m.location_resolution)
         n = m.location_resolution
         ii, jj = np.meshgrid(np.arange(n), np.arange(n), indexing='ij')
@@ -369,7 +365,7 @@ class Synthesizer:
 
     def _local_batch(self, ctx: _Context, scene: Scene, points, yaws) -> torch.Tensor:
         r = self._renderer(ctx.frame.resolution)
-        images = [r.render(scene, local_frame(scene.room, pt, yaw, ctx.frame.resolution))
+        images = [r.render(scene, Frame.local(ctx.room.room_type, pt, yaw, ctx.frame.resolution))
                   for pt, yaw in zip(points, yaws)]
         return torch.from_numpy(np.stack(images)).to(self.device)
 

@@ -9,16 +9,15 @@ import torch
 from scene_synth_ros.categories import room_spec
 from scene_synth_ros.corpus.generate import generate_room
 from scene_synth_ros.networks.bundle import (BundleError, build_networks, load_bundle,
-                                           save_bundle)
+                                             save_bundle)
 from scene_synth_ros.networks.config import PipelineConfig, resolve_device
 from scene_synth_ros.networks.dimensions import box_sdf
 from scene_synth_ros.networks.examples import (ExampleSource, insertion_order, placeable,
-                                             room_axis_yaw, room_frame, rotate_scene)
+                                               rotate_scene)
 from scene_synth_ros.networks.location import location_distribution, sample_pixel
 from scene_synth_ros.networks.orientation import decode_angle, is_snapped, snap_angle
 from scene_synth_ros.paths import config_dir
 from scene_synth_ros.render import COS, SIN, Frame, TopDownRenderer
-from scene_synth_ros.scene import Room, Scene
 
 from conftest import tiny_config
 
@@ -111,7 +110,7 @@ def test_location_target_marks_placeable_centroids(rooms):
     child = scene.second_tier[0]
     kept = [o for o in scene.first_tier if o.id != child.support][:1]
     removed = [o for o in scene.objects if o not in kept]
-    frame = room_frame(scene.room, 64)
+    frame = Frame.for_room(scene.room, 64)
     target = src.location_target(frame, placeable(removed, kept))
     labels = set(np.unique(target)) - {0}
     expect = {1 + src.index[o.category] for o in placeable(removed, kept)}
@@ -124,7 +123,7 @@ def test_location_target_marks_placeable_centroids(rooms):
 
 def test_location_target_radius(rooms):
     scene = rooms[0]
-    frame = room_frame(scene.room, 64)
+    frame = Frame.for_room(scene.room, 64)
     obj = scene.first_tier[0]
     i, j = frame.world_to_pixel(obj.position[:2])
     for r in (0, 1, 2):
@@ -165,9 +164,9 @@ def test_rotation_augmentation_is_exact(rooms):
         for a, b in zip(back.objects, scene.objects):
             assert np.allclose(a.position, b.position, atol=1e-9)
             assert math.isclose(math.remainder(a.yaw - b.yaw, 2 * math.pi), 0, abs_tol=1e-9)
-        base = r.render(scene, room_frame(scene.room, 64))
+        base = r.render(scene, Frame.for_room(scene.room, 64))
         turned = rotate_scene(scene, 1)
-        img = r.render(turned, room_frame(turned.room, 64))
+        img = r.render(turned, Frame.for_room(turned.room, 64))
         # A quarter turn counter-clockwise of the world is a quarter turn of the image
         # (rows grow with +y, columns with +x)...
         rb = np.rot90(base, 1, axes=(2, 1))
@@ -188,21 +187,6 @@ def test_example_batches_are_pure_functions_of_their_seed(rooms):
     cat = src.batch('category', [0], 64)
     assert cat['target'].max() <= src.num_categories
     assert (cat['target'] == src.num_categories).any(), 'no STOP examples in 64'
-
-
-def test_room_frame_follows_a_rotated_room():
-    square = [(0, 0), (4, 0), (4, 3), (0, 3)]
-    a = math.radians(30)
-    rot = [(x * math.cos(a) - y * math.sin(a), x * math.sin(a) + y * math.cos(a))
-           for x, y in square]
-    room = Room('bedroom', rot)
-    assert room_axis_yaw(room) == pytest.approx(a)
-    frame = room_frame(room, 64)
-    r = TopDownRenderer(64)
-    upright = r.render(Scene(Room('bedroom', square)), room_frame(Room('bedroom', square), 64))
-    rotated = r.render(Scene(room), frame)
-    assert np.abs(upright[0] - rotated[0]).sum() <= 8   # same floor, up to edge pixels
-    assert room_frame(Room('bedroom', square), 64) == Frame.for_room(Room('bedroom', square), 64)
 
 
 # ---- location distribution, snapping, SDF ------------------------------------------------------

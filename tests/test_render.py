@@ -9,10 +9,27 @@ import shapely
 
 from scene_synth_ros import catalog
 from scene_synth_ros.categories import ROOM_SIZE_CAP, room_spec
-from scene_synth_ros.render import (COS, DOOR, FIRST_CATEGORY, HEIGHT, HEIGHT_SCALE, OBJECT,
-                                    ROOM, SIN, WALL, WINDOW, Frame, TopDownRenderer,
-                                    category_channel, channel_names, num_channels,
-                                    pixel_to_world, to_tensor, wall_reach, world_to_pixel)
+from scene_synth_ros.render import (
+    COS,
+    DOOR,
+    FIRST_CATEGORY,
+    HEIGHT,
+    HEIGHT_SCALE,
+    OBJECT,
+    ROOM,
+    SIN,
+    WALL,
+    WINDOW,
+    Frame,
+    RoomDoesNotFit,
+    TopDownRenderer,
+    category_channel,
+    channel_names,
+    num_channels,
+    pixel_to_world,
+    wall_reach,
+    world_to_pixel,
+)
 from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
 
 SQUARE = Room('bedroom', ((-3.0, -3.0), (3.0, -3.0), (3.0, 3.0), (-3.0, 3.0)))
@@ -52,24 +69,7 @@ def furnished_l_scene() -> Scene:
 
 def transform_scene(scene: Scene, point, yaw) -> Scene:
     """The scene moved rigidly by the inverse of (translate to ``point``, rotate by ``yaw``)."""
-    c, s = math.cos(yaw), math.sin(yaw)
-
-    def tf(p):
-        dx, dy = p[0] - point[0], p[1] - point[1]
-        return (c * dx + s * dy, -s * dx + c * dy)
-
-    room = scene.room
-    new_room = Room(room.room_type, tuple(tf(p) for p in room.floor), room.wall_height,
-                    tuple(Opening(o.kind, tf(o.position), o.width, o.height, o.sill)
-                          for o in room.doors),
-                    tuple(Opening(o.kind, tf(o.position), o.width, o.height, o.sill)
-                          for o in room.windows))
-    objs = []
-    for o in scene.objects:
-        x, y = tf(o.position)
-        objs.append(PlacedObject(o.id, o.category, o.model_id, (x, y, o.position[2]),
-                                 o.yaw - yaw, o.size, o.support))
-    return Scene(new_room, objs)
+    return scene.moved(0.0, (-point[0], -point[1])).moved(-yaw)
 
 
 def iou(a, b) -> float:
@@ -88,7 +88,6 @@ def test_channel_layout():
     assert category_channel('bedroom', 'double bed') == FIRST_CATEGORY + names.index('double bed')
     img = TopDownRenderer(32).render(Scene(SQUARE, []))
     assert img.shape == (46, 32, 32) and img.dtype == np.float32
-    assert to_tensor(img).shape == (46, 32, 32)
 
 
 def test_axis_aligned_box_exact_pixels():
@@ -269,9 +268,10 @@ def test_doors_and_windows_land_on_the_wall():
 
 def test_room_exceeding_cap_raises():
     big = Room('bedroom', ((0, 0), (6.5, 0), (6.5, 3), (0, 3)))
-    with pytest.raises(ValueError, match='6 m square'):
+    with pytest.raises(RoomDoesNotFit, match='6.5 m x 3 m along its walls, which does not '
+                                             'fit the 6 m x 6 m square a bedroom may cover'):
         TopDownRenderer().render(Scene(big, []))
-    with pytest.raises(ValueError):
+    with pytest.raises(RoomDoesNotFit):
         Frame.for_room(Room('bathroom', ((0, 0), (3, 0), (3, 5.2), (0, 5.2))), 64)
     exact = Room('bedroom', ((0, 0), (6.0, 0), (6.0, 6.0), (0, 6.0)))
     assert Frame.for_room(exact, 64).centre == (3.0, 3.0)
@@ -324,3 +324,55 @@ def test_object_outside_frame_is_skipped():
     far = obj('desk', 30.0, 30.0, 0.3, 1.0, 0.6)
     img = TopDownRenderer().render(Scene(SQUARE, [far]), FRAME_64)
     assert not img[OBJECT].any()
+
+
+# ---- the room's frame: one definition, rooms of any orientation ------------------------------
+RECT = ((0.0, 0.0), (4.0, 0.0), (4.0, 3.0), (0.0, 3.0))
+ELL = ((0.0, 0.0), (5.0, 0.0), (5.0, 2.0), (2.5, 2.0), (2.5, 4.0), (0.0, 4.0))
+
+
+def furnished(floor) -> Scene:
+    room = Room('bedroom', floor, 2.6, doors=(Opening('door', (1.0, 0.0), 0.9, 2.0),),
+                windows=(Opening('window', (0.0, 1.5), 1.0, 1.2, 0.9),))
+    return Scene(room, [obj('double bed', 2.2, 1.1, 0.0, 1.6, 2.0, 0.5),
+                        obj('stand', 3.5, 0.3, 0.4, 0.45, 0.4, 0.55),
+                        obj('desk', 1.0, 2.6, -1.2, 1.2, 0.6, 0.75)])
+
+
+@pytest.mark.parametrize('floor', [RECT, ELL], ids=['rectangle', 'L'])
+@pytest.mark.parametrize('degrees', [0, 17, 30, 45, 90])
+def test_room_frame_turns_with_the_room(floor, degrees):
+    """A room turned by any angle is seen in its own axes: its frame yaw is the angle reduced
+    to [-45, 45) degrees, and its image is the unturned room's image, turned by the whole
+    quarter turns the reduction took away."""
+    base = furnished(floor)
+    angle = math.radians(degrees)
+    turned = base.moved(angle, (0.7, -1.3))
+    r = TopDownRenderer(64)
+    f0, f1 = Frame.for_room(base.room, 64), Frame.for_room(turned.room, 64)
+    assert f0.yaw == 0.0 and -math.pi / 4 - 1e-9 <= f1.yaw < math.pi / 4
+    quarters = round((angle - f1.yaw) / (math.pi / 2))
+    assert math.isclose(angle - f1.yaw, quarters * math.pi / 2, abs_tol=1e-9)
+    # The frame's centre is the centre of the room's own box, wherever the room is.
+    assert np.allclose(f1.to_local(np.array(turned.room.floor)).min(0),
+                       -f1.to_local(np.array(turned.room.floor)).max(0), atol=1e-9)
+    want = np.rot90(r.render(base, f0), quarters, axes=(2, 1))
+    got = r.render(turned, f1)
+    fixed = [c for c in range(got.shape[0]) if c not in (SIN, COS)]
+    assert np.array_equal(got[fixed], want[fixed])
+    # The yaw channels hold yaws relative to the frame: a quarter turn maps (sin, cos) to
+    # (cos, -sin).
+    sin, cos = want[SIN], want[COS]
+    for _ in range(quarters % 4):
+        sin, cos = cos, -sin
+    assert np.allclose(got[SIN], sin, atol=1e-6) and np.allclose(got[COS], cos, atol=1e-6)
+
+
+@pytest.mark.parametrize('degrees', [0, 17, 30, 45, 90])
+def test_room_fits_iff_it_fits_in_its_own_axes(degrees):
+    angle = math.radians(degrees)
+    fits = Scene(Room('bedroom', ((0, 0), (5.5, 0), (5.5, 5.0), (0, 5.0)))).moved(angle)
+    assert Frame.for_room(fits.room, 64).extent == ROOM_SIZE_CAP['bedroom']
+    too_long = Scene(Room('bedroom', ((0, 0), (6.2, 0), (6.2, 2.0), (0, 2.0)))).moved(angle)
+    with pytest.raises(RoomDoesNotFit, match='6.2 m x 2 m along its walls'):
+        Frame.for_room(too_long.room, 64)

@@ -434,3 +434,26 @@ def test_dump_accepts_numpy_values():
     scene.meta = {'seed': np.int64(3)}
     d = json.loads(schema.dump_scene(scene))
     assert d['objects'][0]['position'] == [2.1, 2.5, 0.0] and d['meta'] == {'seed': 3}
+
+
+@pytest.mark.parametrize('degrees', [0, 17, 30, 45, 90])
+@pytest.mark.parametrize('floor, fits', [
+    ([[0, 0], [5.5, 0], [5.5, 5.0], [0, 5.0]], True),
+    ([[0, 0], [5.8, 0], [5.8, 2.5], [2.8, 2.5], [2.8, 4.5], [0, 4.5]], True),   # an L
+    ([[0, 0], [6.3, 0], [6.3, 3.0], [0, 3.0]], False),
+    ([[0, 0], [6.2, 0], [6.2, 2.5], [2.8, 2.5], [2.8, 4.5], [0, 4.5]], False),
+], ids=['5.5x5', 'L-5.8x4.5', '6.3x3', 'L-6.2x4.5'])
+def test_a_room_is_accepted_iff_it_fits_in_its_own_axes(floor, fits, degrees):
+    """The 6 m square of a bedroom is measured along the room's walls, whatever way the room
+    is turned (the networks see it in its own axes)."""
+    a = math.radians(degrees)
+    turned = [[x * math.cos(a) - y * math.sin(a) + 10, x * math.sin(a) + y * math.cos(a) - 3]
+              for x, y in floor]
+    layout = {'room_type': 'bedroom', 'floor': turned}
+    if fits:
+        assert len(schema.parse_room_layout(layout).room.floor) == len(floor)
+    else:
+        with pytest.raises(SceneValidationError, match=r'^floor is 6\.\d+ m x \d(\.\d+)? m along '
+                                                        r'its walls, which does not fit the 6 m x '
+                                                        r'6 m square a bedroom may cover$'):
+            schema.parse_room_layout(layout)

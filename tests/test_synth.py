@@ -2,6 +2,7 @@
 shipped weights."""
 import math
 
+import numpy as np
 import pytest
 import torch
 
@@ -10,6 +11,7 @@ from scene_synth_ros.corpus.generate import empty_room, generate_room
 from scene_synth_ros.geometry import check_scene, door_zone
 from scene_synth_ros.networks.bundle import BundleError, load_bundle
 from scene_synth_ros.paths import weights_dir
+from scene_synth_ros.render import Frame, RoomDoesNotFit
 from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
 from scene_synth_ros.synth import SynthConfig, SynthesisError, Synthesizer
 
@@ -167,7 +169,7 @@ def test_errors_say_what_is_wrong(tmp_path, tiny_weights):
     with pytest.raises(BundleError, match='bedroom.pt: no such weights file'):
         s.generate(empty_room('bedroom', 0))
     huge = Room('bathroom', [(0, 0), (6, 0), (6, 3), (0, 3)])
-    with pytest.raises(SynthesisError, match='more than the 5 m'):
+    with pytest.raises(RoomDoesNotFit, match='does not fit the 5 m x 5 m square'):
         Synthesizer(tiny_weights).generate(huge)
     odd = Scene(empty_room('bathroom', 0), [box('double bed', 1.0, 1.0, 1.6, 2.0, oid='bed')])
     with pytest.raises(SynthesisError, match="'bed' is a double bed, which is not one of the "
@@ -207,6 +209,7 @@ def _box(x, y, yaw=0.0, size=(0.6, 0.4, 0.8)):
 
 def test_against_walls_closes_sub_pixel_gaps_only():
     import numpy as np
+
     from scene_synth_ros.synth import WALL_GAP, against_walls
     room = Room('bedroom', ((0, 0), (4, 0), (4, 3), (0, 3)), 2.6)
     rng = np.random.default_rng(0)
@@ -241,3 +244,53 @@ def test_synthesized_furniture_stands_against_walls_like_the_corpus():
     band = sum(0.02 + 1e-6 < g < 0.15 for g in gaps) / len(gaps)
     touching = sum(g <= 0.02 + 1e-6 for g in gaps) / len(gaps)
     assert band < 0.1 and touching > 0.5, (band, touching)
+
+
+@pytest.mark.parametrize('degrees', [0, 17, 30, 45, 90])
+@pytest.mark.parametrize('floor', [
+    ((0, 0), (4, 0), (4, 3), (0, 3)),
+    ((0, 0), (5, 0), (5, 2), (2.5, 2), (2.5, 4), (0, 4)),
+], ids=['rectangle', 'L'])
+def test_a_turned_room_is_furnished_as_the_room_turned(synth, floor, degrees):
+    """Synthesis sees a room in its own axes, so furnishing a turned room gives the turned
+    furnishing of the room, seed for seed. The frame keeps a yaw within 45 degrees of the world
+    axes, so a room turned by 45 or 90 degrees is furnished as the room turned by the quarter
+    turn its frame takes away (and the unturned room by 0 to 30 degrees)."""
+    base = Scene(Room('bedroom', floor, 2.6, doors=(Opening('door', (1.0, 0.0), 0.9, 2.0),)))
+    angle = math.radians(degrees)
+    turned = base.moved(angle, (3.0, -2.0))
+    frame_yaw = Frame.for_room(turned.room).yaw
+    upright = base.moved(angle - frame_yaw)      # axis-aligned: the room in its frame's axes
+    want = synth.generate(upright.room, seed=7).scene.moved(frame_yaw, (3.0, -2.0))
+    got = synth.generate(turned.room, seed=7).scene
+    assert len(got.objects) == len(want.objects) > 0
+    for a, b in zip(got.objects, want.objects):
+        assert (a.id, a.category, a.model_id, a.support) == (b.id, b.category, b.model_id,
+                                                               b.support)
+        assert np.allclose(a.position, b.position, atol=1e-6)
+        assert np.allclose(a.size, b.size, atol=1e-9)
+        assert abs(math.remainder(a.yaw - b.yaw, 2 * math.pi)) < 1e-6
+
+
+def test_rendered_channels_are_what_the_networks_see(tiny_weights, tmp_path, monkeypatch):
+    """`scene-synth render --channels` (documented as the network input) writes exactly the
+    image the category module is given, for a room turned off the world axes too."""
+    from scene_synth_ros.cli import main
+    from scene_synth_ros.schema import save_scene
+    room = Room('bedroom', ((0, 0), (4, 0), (4, 3), (0, 3)), 2.6,
+                doors=(Opening('door', (1.0, 0.0), 0.9, 2.0),))
+    desk = PlacedObject('desk_0', 'desk', 'desk_00', (3.0, 2.0, 0.0), 0.4, (1.05, 0.722, 0.754))
+    scene = Scene(room, [desk]).moved(math.radians(30), (1.0, 2.0))
+    save_scene(scene, tmp_path / 'room.json')
+    assert main(['render', str(tmp_path / 'room.json'), '--channels',
+                 str(tmp_path / 'in.npy')]) == 0
+    s = Synthesizer(tiny_weights)
+    category = s.bundle('bedroom').networks['category']
+    seen = []
+
+    def spy(image, counts, forward=category.forward):
+        seen.append(image[0].numpy().copy())
+        return forward(image, counts)
+    monkeypatch.setattr(category, 'forward', spy)
+    s.next_object(scene, seed=0)
+    assert seen and np.array_equal(np.load(tmp_path / 'in.npy'), seen[0])

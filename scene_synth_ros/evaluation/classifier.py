@@ -2,7 +2,7 @@
 
 A ResNet-34-style network (stages of 3, 4, 6 and 3 ``BasicBlock``s, narrow widths for a
 CPU) reads the same multi-channel top-down image the pipeline's networks see (the room's
-global view, ``room_frame``, at the shipped weights' resolution) and says whether a room
+global view, ``Frame.for_room``, at the shipped weights' resolution) and says whether a room
 came from the training corpus ("real") or from elsewhere ("fake": synthesized, or a
 perturbed held-out corpus room). It is trained on a balanced set and scored on a balanced
 held-out set; 50 % accuracy means it cannot tell the two apart.
@@ -26,8 +26,8 @@ from tqdm import tqdm
 
 from ..networks.blocks import ResNetEncoder
 from ..networks.config import EncoderConfig
-from ..networks.examples import room_frame, rotate_scene
-from ..render import TopDownRenderer
+from ..networks.examples import rotate_scene
+from ..render import Frame, TopDownRenderer
 from ..scene import Scene
 
 
@@ -90,7 +90,7 @@ class SceneImages:
             s = self.scenes[int(i)]
             if turns is not None and turns[k]:
                 s = rotate_scene(s, int(turns[k]))
-            out.append(self.renderer.render(s, room_frame(s.room, self.resolution)))
+            out.append(self.renderer.render(s, Frame.for_room(s.room, self.resolution)))
         return torch.from_numpy(np.stack(out))
 
 
@@ -111,7 +111,8 @@ class TensorImages:
     def batch(self, indices, turns=None) -> torch.Tensor:
         x = self.images[torch.as_tensor(np.asarray(indices, dtype=np.int64))]
         if turns is not None:
-            x = torch.stack([torch.rot90(im, int(t), (1, 2)) for im, t in zip(x, turns)])
+            x = torch.stack([torch.rot90(im, int(t), (1, 2))
+                             for im, t in zip(x, turns, strict=True)])
         return x
 
 
@@ -131,7 +132,7 @@ def train_classifier(train: Images, cfg: ClassifierConfig, seed: int,
     correct = seen = 0
     net.train()
     bar = tqdm(total=total, desc=desc, disable=not progress, leave=False, unit='step')
-    for epoch in range(cfg.epochs):
+    for _ in range(cfg.epochs):
         order = rng.permutation(len(train))
         correct = seen = 0
         for start in range(0, len(order), cfg.batch_size):

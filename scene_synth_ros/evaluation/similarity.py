@@ -5,7 +5,7 @@ rooms.
 Similarity of two rooms A and B of one type, in [0, 1]:
 
 1. Every object becomes its category and a normalised position: its footprint centre in
-   the room's own axes (those of its longest wall, ``room_axis_yaw``), relative to the
+   the room's own axes (those of its longest wall, ``render.room_axis_yaw``), relative to the
    room's bounding box in those axes, the longer side first, so that both coordinates lie
    in [-0.5, 0.5] whatever the shell's size and shape.
 2. Objects are matched only to objects of the same category, one to one, maximising the
@@ -31,7 +31,7 @@ from typing import Sequence
 
 import numpy as np
 
-from ..networks.examples import room_axis_yaw
+from ..render import Frame, room_frame_box
 from ..scene import Scene
 from .parallel import pmap
 
@@ -54,14 +54,10 @@ class Layout:
 
 def layout(scene: Scene) -> Layout:
     """The normalised layout of ``scene`` (see the module docstring, step 1)."""
-    yaw = room_axis_yaw(scene.room)
-    c, s = np.cos(yaw), np.sin(yaw)
-    to_room = np.array([[c, s], [-s, c]])           # world -> the room's own axes
-    floor = np.asarray(scene.room.floor, dtype=float) @ to_room.T
-    lo, hi = floor.min(0), floor.max(0)
+    box = room_frame_box(scene.room)
     pts = np.array([o.position[:2] for o in scene.objects], dtype=float).reshape(-1, 2)
-    uv = (pts @ to_room.T - (lo + hi) / 2) / (hi - lo)
-    if hi[1] - lo[1] > hi[0] - lo[0]:
+    uv = Frame(box.centre, box.yaw, box.cap, 1).to_local(pts) / np.array(box.span)
+    if box.span[1] > box.span[0]:
         uv = uv[:, ::-1]
     return Layout(tuple(o.category for o in scene.objects), np.ascontiguousarray(uv))
 
@@ -129,7 +125,7 @@ class References:
         self.counts = np.array([len(lay) for lay in layouts], dtype=float)
         per_cat: dict[str, dict[int, list[np.ndarray]]] = {}
         for r, lay in enumerate(layouts):
-            for cat, p in zip(lay.categories, lay.positions):
+            for cat, p in zip(lay.categories, lay.positions, strict=True):
                 per_cat.setdefault(cat, {}).setdefault(r, []).append(p)
         self.positions: dict[str, np.ndarray] = {}     # (R, M, 2)
         self.valid: dict[str, np.ndarray] = {}         # (R, M) as 0.0 / 1.0

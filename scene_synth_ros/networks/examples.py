@@ -23,39 +23,6 @@ from .orientation import is_snapped
 MODULES = ('category', 'location', 'orientation', 'snap', 'dimensions')
 
 
-# ---- frames -------------------------------------------------------------------------------
-def room_axis_yaw(room: Room) -> float:
-    """Direction of the room's longest wall, reduced to [-45, 45) degrees: the axes the
-    networks see the room in (0 for the axis-aligned rooms of the corpus)."""
-    wall = max(room.walls, key=lambda w: w.length)
-    d = wall.direction
-    a = math.atan2(d[1], d[0])
-    q = math.pi / 2
-    return (a + q / 2) % q - q / 2
-
-
-def room_frame(room: Room, resolution: int) -> Frame:
-    """The global view of a room: centred on its bounding box in its own axes, rotated by
-    ``room_axis_yaw``, side = the room type's size cap. For an axis-aligned room this is
-    ``Frame.for_room``."""
-    yaw = room_axis_yaw(room)
-    c, s = math.cos(yaw), math.sin(yaw)
-    pts = np.asarray(room.floor)
-    u = pts[:, 0] * c + pts[:, 1] * s
-    v = -pts[:, 0] * s + pts[:, 1] * c
-    cu, cv = (u.min() + u.max()) / 2, (v.min() + v.max()) / 2
-    rt = resolve_room_type(room.room_type)
-    cap = ROOM_SIZE_CAP[rt]
-    if max(u.max() - u.min(), v.max() - v.min()) > cap + 1e-6:
-        raise ValueError(f'the {rt} spans {u.max() - u.min():.2f} x {v.max() - v.min():.2f} m, '
-                         f'more than the {cap:g} m a {rt} image covers')
-    return Frame((cu * c - cv * s, cu * s + cv * c), yaw, cap, resolution)
-
-
-def local_frame(room: Room, point, yaw: float, resolution: int) -> Frame:
-    return Frame.local(room.room_type, point, yaw, resolution)
-
-
 # ---- augmentation -------------------------------------------------------------------------
 def _turn(xy, centre, k: int):
     x, y = xy[0] - centre[0], xy[1] - centre[1]
@@ -160,7 +127,7 @@ class ExampleSource:
         order = insertion_order(scene, rng, by_importance=True)
         k = int(rng.integers(len(order) + 1))
         part = Scene(scene.room, order[:k])
-        image = self.renderer.render(part, room_frame(scene.room, self.resolution))
+        image = self.renderer.render(part, Frame.for_room(scene.room, self.resolution))
         target = self.index[order[k].category] if k < len(order) else self.num_categories
         return image, self.counts(order[:k]), target
 
@@ -169,7 +136,7 @@ class ExampleSource:
         order = insertion_order(scene, rng, by_importance=False)
         k = int(rng.integers(len(order) + 1))
         kept, removed = order[:k], order[k:]
-        frame = room_frame(scene.room, self.resolution)
+        frame = Frame.for_room(scene.room, self.resolution)
         image = self.renderer.render(Scene(scene.room, kept), frame)
         target = self.location_target(frame, placeable(removed, kept))
         return image, target
@@ -198,15 +165,15 @@ class ExampleSource:
 
     def orientation_example(self, rng):
         part, obj = self._target_object(rng)
-        frame = room_frame(part.room, self.resolution)
-        image = self.renderer.render(part, local_frame(part.room, obj.position, frame.yaw,
+        frame = Frame.for_room(part.room, self.resolution)
+        image = self.renderer.render(part, Frame.local(self.room_type, obj.position, frame.yaw,
                                                        self.resolution))
         theta = math.remainder(obj.yaw - frame.yaw, 2 * math.pi)
         return image, self.index[obj.category], theta
 
     def dimensions_example(self, rng):
         part, obj = self._target_object(rng)
-        image = self.renderer.render(part, local_frame(part.room, obj.position, obj.yaw,
+        image = self.renderer.render(part, Frame.local(self.room_type, obj.position, obj.yaw,
                                                        self.resolution))
         return image, self.index[obj.category], (math.log(obj.depth), math.log(obj.width))
 
