@@ -2,6 +2,7 @@
 export, placement in a scene)."""
 from __future__ import annotations
 
+from itertools import pairwise
 import math
 import time
 
@@ -76,7 +77,7 @@ def test_variants_lie_in_and_span_the_ranges(category):
     info = CATEGORIES[category]
     vs = catalog.variants(category)
     inside = [v for v in vs if all(lo - 1e-9 <= s <= hi + 1e-9 for s, (lo, hi) in
-                                   zip(v.size, (info.width, info.depth, info.height)))]
+                                   zip(v.size, (info.width, info.depth, info.height), strict=True))]
     assert len(inside) >= 5
     for axis, (lo, hi) in enumerate((info.width, info.depth, info.height)):
         values = [v.size[axis] for v in vs]
@@ -107,12 +108,12 @@ def test_nearest_returns_exact_variant_and_is_monotonic(category):
     depth = sum(info.depth) / 2
     widths = np.linspace(info.width[0] * 0.7, info.width[1] * 1.3, 60)
     chosen = [catalog.nearest(category, w, depth).width for w in widths]
-    assert all(a <= b + 1e-12 for a, b in zip(chosen, chosen[1:]))
+    assert all(a <= b + 1e-12 for a, b in pairwise(chosen))
     assert chosen[0] < chosen[-1]
     width = sum(info.width) / 2
     depths = np.linspace(info.depth[0] * 0.7, info.depth[1] * 1.3, 60)
     chosen = [catalog.nearest(category, width, d).depth for d in depths]
-    assert all(a <= b + 1e-12 for a, b in zip(chosen, chosen[1:]))
+    assert all(a <= b + 1e-12 for a, b in pairwise(chosen))
     # a request far larger than the catalog gets the largest footprint
     big = catalog.nearest(category, info.width[1] * 3, info.depth[1] * 3)
     assert big.width * big.depth == max(v.width * v.depth for v in vs)
@@ -139,6 +140,12 @@ def test_mesh_bounds_parts_and_colours(variant):
     for p in parts:
         assert (colours[start:start + len(p.vertices)] == meshes.MATERIALS[p.material].rgba).all()
         start += len(p.vertices)
+
+
+def test_every_category_has_its_own_builder():
+    # a furniture module the registry forgets to import would leave its categories as plain boxes
+    assert set(meshes.BUILDERS) == set(CATEGORIES)
+    assert meshes.builder_for('sofa') is meshes.builder_for('armchair')
 
 
 def test_every_catalog_mesh_fits_its_box_quickly():

@@ -1,0 +1,75 @@
+"""Whole scenes as trimesh scenes: every placed object of a ``scene_synth_ros.scene.Scene``
+shown as its catalog model, posed by its position and yaw.
+
+``variant_for`` decides which model an object shows (its catalog variant, re-sized when the
+object's size differs), ``object_transform`` where it goes, and ``scene_mesh`` builds the
+scene graph, sharing geometry between objects that show the same model at the same size.
+"""
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+import trimesh
+
+from .. import catalog
+from ..catalog import ModelVariant
+from ..categories import CATEGORIES
+from .builder import rot_z
+from .export import material_meshes
+
+
+def object_transform(position: Sequence[float], yaw: float) -> np.ndarray:
+    """World transform of a placed object: translate(position) . rotate_z(yaw)."""
+    t = np.eye(4)
+    t[:3, :3] = rot_z(float(yaw))
+    t[:3, 3] = [float(v) for v in position]
+    return t
+
+
+def variant_for(obj) -> ModelVariant:
+    """The model a placed object shows: its catalog variant, re-sized to ``obj.size`` when
+    the object's size differs from the catalog's (style kept); for an unknown model id, the
+    style of the category's nearest variant."""
+    size = tuple(float(v) for v in obj.size)
+    try:
+        v = catalog.get(obj.model_id)
+    except KeyError:
+        v = None
+    if v is not None and v.category == obj.category:
+        if np.allclose(v.size, size, atol=1e-6):
+            return v
+        return ModelVariant(f'{v.model_id}@{size[0]:.3f}x{size[1]:.3f}x{size[2]:.3f}',
+                            v.category, size, v.style)
+    style = 0
+    if obj.category in CATEGORIES:
+        style = catalog.nearest(obj.category, size[0], size[1]).style
+    return ModelVariant(f'{obj.model_id or obj.category}@{size[0]:.3f}x{size[1]:.3f}x'
+                        f'{size[2]:.3f}', obj.category, size, style)
+
+
+def scene_mesh(scene) -> trimesh.Scene:
+    """A trimesh scene with every object of a ``scene_synth_ros.scene.Scene``.
+
+    Each object is a node named after its id whose transform is
+    ``translate(position) . rotate_z(yaw)``; its children are one node per material
+    (``<object id>/<material>``) with identity transforms. Geometry is shared between
+    objects showing the same model at the same size. The room itself is not included."""
+    out = trimesh.Scene()
+    base = out.graph.base_frame
+    cache: dict[str, dict[str, trimesh.Trimesh]] = {}
+    for obj in scene.objects:
+        v = variant_for(obj)
+        if v.model_id not in cache:
+            cache[v.model_id] = material_meshes(v)
+        out.graph.update(frame_to=obj.id, frame_from=base,
+                         matrix=object_transform(obj.position, obj.yaw))
+        for mat_name, mesh in cache[v.model_id].items():
+            geom = f'{v.model_id}/{mat_name}'
+            if geom not in out.geometry:
+                out.add_geometry(mesh, geom_name=geom, node_name=f'{obj.id}/{mat_name}',
+                                 parent_node_name=obj.id)
+            else:
+                out.graph.update(frame_to=f'{obj.id}/{mat_name}', frame_from=obj.id,
+                                 matrix=np.eye(4), geometry=geom)
+    return out
