@@ -28,6 +28,10 @@ demo: install
 test: install
 	$(PY) -m pytest -q
 
+# The lane for people working on the code: everything but the tests marked slow (< 1 min).
+test-fast: install
+	$(PY) -m pytest -q -m "not slow"
+
 lint: install
 	$(VENV)/bin/ruff check .
 

@@ -14,7 +14,9 @@ def share_dir() -> Path:
     """The directory holding msg_schemas/, config/ and examples/.
 
     A source checkout (or editable install) has them beside the package; a colcon or pip
-    install has them in ``share/scene_synth_ros`` under its prefix.
+    install has them in ``share/scene_synth_ros`` under its prefix, found through the ament
+    index when the workspace is sourced, else from where the package itself was installed
+    (``<prefix>/lib/pythonX.Y/site-packages/scene_synth_ros``) or the interpreter's prefix.
     """
     if (_SOURCE_ROOT / 'msg_schemas').is_dir() and (_SOURCE_ROOT / 'package.xml').is_file():
         return _SOURCE_ROOT
@@ -23,12 +25,14 @@ def share_dir() -> Path:
         return Path(get_package_share_directory(PACKAGE))
     except Exception:
         pass
-    candidate = Path(sys.prefix) / 'share' / PACKAGE
-    if (candidate / 'msg_schemas').is_dir():
-        return candidate
+    candidates = [_SOURCE_ROOT.parent.parent.parent / 'share' / PACKAGE,
+                  Path(sys.prefix) / 'share' / PACKAGE]
+    for candidate in candidates:
+        if (candidate / 'msg_schemas').is_dir():
+            return candidate
     raise FileNotFoundError(
         f'cannot find the {PACKAGE} data files (msg_schemas/): looked in {_SOURCE_ROOT}, '
-        f'the ament index and {candidate}')
+        f'the ament index, {candidates[0]} and {candidates[1]}')
 
 
 def schema_dir() -> Path:

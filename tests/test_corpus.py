@@ -98,11 +98,13 @@ def test_televisions_stand_on_tv_stands_or_dressers(rooms):
                 assert tv.position[2] == pytest.approx(scene.get(tv.support).top)
 
 
+@pytest.mark.slow
 def test_about_a_fifth_of_rooms_are_l_shaped():
     stats = collect('bedroom', generate_corpus('bedroom', 400, seed=11, workers=2), check=False)
     assert 0.13 <= stats.l_shaped / stats.rooms <= 0.27
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize('room_type', ROOM_TYPES)
 def test_statistics_match_the_paper_table(room_type):
     # 600 rooms per type: sampling noise of the KL is ~0.005, far below the 0.05 bound.

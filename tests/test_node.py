@@ -28,6 +28,8 @@ from scene_synth_ros.paths import config_dir, examples_dir, weights_dir  # noqa:
 from scene_synth_ros.ros_client import (SceneSynthClient, node_command, node_env,  # noqa: E402
                                         quaternion_yaw, start_node, stop_node)
 from scene_synth_ros.schema import parse_room_layout, parse_scene  # noqa: E402
+
+pytestmark = pytest.mark.slow     # every test here starts node processes
 from scene_synth_ros.server import ServerConfig  # noqa: E402
 
 LAYOUT = (examples_dir() / 'bedroom_layout.json').read_text()

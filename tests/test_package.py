@@ -1,9 +1,14 @@
 """The ROS 2 package is laid out and installs as ament_python / colcon expect."""
+import json
+import os
 from pathlib import Path
 import subprocess
 import sys
+import venv
 import xml.etree.ElementTree as ET
 import zipfile
+
+import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 ROS_DEPS = {'rclpy', 'std_msgs', 'geometry_msgs', 'visualization_msgs', 'std_srvs',
@@ -64,3 +69,93 @@ def test_resource_marker_and_setup_cfg_script_dir():
     cfg = (ROOT / 'setup.cfg').read_text()
     # ros2 run looks for executables in lib/<package>
     assert 'install_scripts=$base/lib/scene_synth_ros' in cfg
+
+
+def _source_packages() -> set[str]:
+    """Every directory of Python modules under scene_synth_ros/, as a dotted package name."""
+    pkg = ROOT / 'scene_synth_ros'
+    return {'.'.join(d.relative_to(ROOT).parts) for d in [pkg, *pkg.rglob('*')]
+            if d.is_dir() and any(d.glob('*.py'))}
+
+
+def test_every_directory_of_modules_is_a_package():
+    # find_packages() skips a directory without __init__.py, and so would every wheel and
+    # colcon install (networks/ was once left out that way).
+    missing = sorted(p for p in _source_packages()
+                     if not (ROOT / p.replace('.', '/') / '__init__.py').is_file())
+    assert not missing, f'no __init__.py in {missing}'
+
+
+@pytest.mark.slow
+def test_the_wheel_works_installed_outside_the_source_tree(tmp_path):
+    """Build the wheel, install it (not editable) into a fresh virtual environment and use it
+    from a directory outside the checkout, as a user of `pip install .` or of a plain
+    `colcon build` would. The fresh environment borrows this one's pinned dependencies
+    through a path entry, which does not run the editable install's import hook."""
+    wheels = tmp_path / 'wheels'
+    subprocess.run([sys.executable, '-m', 'pip', 'wheel', '-q', '--no-deps',
+                    '--no-build-isolation', '-w', str(wheels), str(ROOT)],
+                   check=True, timeout=300, capture_output=True)
+    wheel = next(wheels.glob('scene_synth_ros-*.whl'))
+    in_wheel = {'.'.join(Path(n).parent.parts) for n in zipfile.ZipFile(wheel).namelist()
+                if n.endswith('/__init__.py')}
+    assert _source_packages() <= in_wheel, sorted(_source_packages() - in_wheel)
+
+    env_dir = tmp_path / 'fresh'
+    venv.create(env_dir, with_pip=False)
+    py = env_dir / 'bin' / 'python'
+    site = Path(subprocess.run([str(py), '-c', 'import sysconfig; print(sysconfig.get_path('
+                                '"purelib"))'], check=True, capture_output=True,
+                               text=True).stdout.strip())
+    deps = [p for p in map(Path, sys.path) if p.name == 'site-packages' and p.is_dir()]
+    (site / '_borrowed_dependencies.pth').write_text(''.join(f'{p}\n' for p in deps))
+    subprocess.run([sys.executable, '-m', 'pip', '--python', str(py), 'install', '-q',
+                    '--no-deps', '--no-index', str(wheel)],
+                   check=True, timeout=300, capture_output=True)
+
+    work = tmp_path / 'elsewhere'
+    work.mkdir()
+    env = {k: v for k, v in os.environ.items()
+           if k not in ('PYTHONPATH', 'AMENT_PREFIX_PATH', 'COLCON_PREFIX_PATH')}
+
+    def run(*argv):
+        done = subprocess.run(argv, cwd=work, env=env, capture_output=True, text=True,
+                              timeout=300)
+        assert done.returncode == 0, done.stderr
+        return done.stdout
+
+    run(str(env_dir / 'bin' / 'scene-synth'), 'generate', '--room-type', 'bedroom', '--seed',
+        '0', '--out', 'x.json')
+    check = (
+        'import json, sys\n'
+        'import scene_synth_ros, scene_synth_ros.node\n'
+        'from scene_synth_ros import paths\n'
+        'from scene_synth_ros.schema import load_scene\n'
+        'scene = load_scene("x.json")\n'
+        'share = paths.share_dir()\n'
+        'print(json.dumps({"package": scene_synth_ros.__file__, "share": str(share),\n'
+        '    "objects": len(scene.objects),\n'
+        '    "files": sorted(p.name for p in share.iterdir()),\n'
+        '    "schemas": sorted(p.name for p in paths.schema_dir().glob("*.json")),\n'
+        '    "configs": sorted(p.name for p in paths.config_dir().glob("*.yaml")),\n'
+        '    "weights": sorted(p.name for p in paths.weights_dir().glob("*.pt")),\n'
+        '    "node": scene_synth_ros.node.__file__}))\n')
+    seen = json.loads(run(str(py), '-c', check))
+    prefix = str(env_dir.resolve())
+    assert seen['package'].startswith(prefix) and seen['node'].startswith(prefix)
+    assert seen['share'] == str(env_dir.resolve() / 'share' / 'scene_synth_ros')
+    assert {'package.xml', 'msg_schemas', 'config', 'examples'} <= set(seen['files'])
+    assert {'room_layout.schema.json', 'scene.schema.json'} <= set(seen['schemas'])
+    assert {'compact.yaml', 'paper.yaml', 'scene_synth_node.yaml'} <= set(seen['configs'])
+    assert seen['weights'] == ['bathroom.pt', 'bedroom.pt', 'living.pt', 'office.pt']
+    assert seen['objects'] > 0
+    assert (env_dir / 'bin' / 'scene_synth_node').is_file()
+
+
+def test_setup_py_runs_without_warnings():
+    # colcon's ament_python build runs setup.py directly; a warning there is shown to every
+    # user of `colcon build` (once: "Unknown distribution option: 'tests_require'").
+    done = subprocess.run([sys.executable, 'setup.py', '--name', '--version'], cwd=ROOT,
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0 and done.stdout.split() == ['scene_synth_ros', '0.1.0']
+    assert 'warn' not in done.stderr.lower(), done.stderr
