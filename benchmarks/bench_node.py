@@ -24,12 +24,11 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
 
+from scene_synth_ros.corpus import HELDOUT_SEED  # noqa: E402
 from scene_synth_ros.corpus.generate import empty_room  # noqa: E402
 from scene_synth_ros.ros_client import SceneSynthClient, start_node, stop_node  # noqa: E402
 from scene_synth_ros.scene import Scene  # noqa: E402
 from scene_synth_ros.schema import dump_scene  # noqa: E402
-
-SHELL_SEED = 1     # held-out corpus shells, never trained on
 
 
 def rss_mb(pid: int) -> float:
@@ -40,7 +39,7 @@ def rss_mb(pid: int) -> float:
 
 
 def layout_text(room_type: str, index: int) -> str:
-    d = json.loads(dump_scene(Scene(empty_room(room_type, SHELL_SEED, index), [])))
+    d = json.loads(dump_scene(Scene(empty_room(room_type, HELDOUT_SEED, index), [])))
     return json.dumps(d['room'])
 
 
@@ -94,7 +93,7 @@ def main() -> int:
                 n = client.count('markers')
                 t0 = time.perf_counter()
                 client.publish_layout(text, wait=False, check=False)
-                client.spin_until(lambda: client.count('markers') > n, 60, 'markers')
+                client.spin_until(lambda n=n: client.count('markers') > n, 60, 'markers')
                 latencies.append(time.perf_counter() - t0)
                 objects.append(sum(1 for m in client.latest('markers').markers
                                    if m.ns == 'labels'))

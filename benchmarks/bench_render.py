@@ -72,27 +72,32 @@ def median_ms(fn, repeats: int = REPEATS) -> float:
     return statistics.median(times) * 1e3
 
 
+def timings_line(scene: Scene, res: int) -> str:
+    """The three medians at ``res`` px, as one line."""
+    r = TopDownRenderer(res)
+
+    def warm(k):
+        r.render(scene)
+
+    def cold(k):
+        r.clear_cache()
+        r.render(scene)
+
+    def local(k):
+        r.render_local(scene, (1.0 + 0.01 * (k % 200), 1.5), 0.037 * k)
+
+    return (f'{res:4d} px: global warm {median_ms(warm):7.3f} ms | '
+            f'global cold {median_ms(cold):7.3f} ms | '
+            f'render_local {median_ms(local):7.3f} ms')
+
+
 def main() -> None:
     scene = bedroom_scene()
     assert len(scene) == 15
     print(f'bedroom scene: {len(scene)} objects, {num_channels("bedroom")} channels, '
           f'median of {REPEATS} renders')
     for res in (64, 256):
-        r = TopDownRenderer(res)
-
-        def warm(k):
-            r.render(scene)
-
-        def cold(k):
-            r.clear_cache()
-            r.render(scene)
-
-        def local(k):
-            r.render_local(scene, (1.0 + 0.01 * (k % 200), 1.5), 0.037 * k)
-
-        print(f'{res:4d} px: global warm {median_ms(warm):7.3f} ms | '
-              f'global cold {median_ms(cold):7.3f} ms | '
-              f'render_local {median_ms(local):7.3f} ms')
+        print(timings_line(scene, res))
 
 
 if __name__ == '__main__':

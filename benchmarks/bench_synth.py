@@ -25,11 +25,11 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from scene_synth_ros.categories import ROOM_TYPES, kl_divergence  # noqa: E402
+from scene_synth_ros.corpus import HELDOUT_SEED  # noqa: E402
 from scene_synth_ros.corpus.generate import empty_room, generate_corpus  # noqa: E402
 from scene_synth_ros.corpus.stats import collect  # noqa: E402
 from scene_synth_ros.geometry import check_scene  # noqa: E402
 
-SHELL_SEED = 1
 _SYNTH = None
 
 
@@ -43,7 +43,7 @@ def _init_worker(weights):
 
 def _synthesize(job):
     rt, i = job
-    room = empty_room(rt, SHELL_SEED, i)
+    room = empty_room(rt, HELDOUT_SEED, i)
     result = _SYNTH.generate(room, seed=i)
     r = check_scene(result.scene)
     return (rt, Counter(o.category for o in result.scene.objects), len(result.scene.objects),
@@ -91,10 +91,10 @@ def timing(rooms, weights):
     from scene_synth_ros.synth import Synthesizer
     synth = Synthesizer(weights)
     synth.bundle('bedroom')
-    synth.generate(empty_room('bedroom', SHELL_SEED, 10_000), seed=0)   # warm-up
+    synth.generate(empty_room('bedroom', HELDOUT_SEED, 10_000), seed=0)   # warm-up
     seconds, modules, objects = [], Counter(), 0
     for i in range(rooms):
-        room = empty_room('bedroom', SHELL_SEED, i)
+        room = empty_room('bedroom', HELDOUT_SEED, i)
         t0 = time.perf_counter()
         result = synth.generate(room, seed=i)
         seconds.append(time.perf_counter() - t0)

@@ -13,11 +13,10 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from scene_synth_ros.categories import ROOM_TYPES  # noqa: E402
+from scene_synth_ros.corpus import HELDOUT_SEED  # noqa: E402
 from scene_synth_ros.corpus.generate import empty_room, generate_room  # noqa: E402
 from scene_synth_ros.evaluation.plausibility import AGAINST_WALL, NEAR_WALL  # noqa: E402
 from scene_synth_ros.synth import SynthConfig, Synthesizer  # noqa: E402
-
-SHELL_SEED = 1      # held-out shells, never trained on
 
 
 def gaps(scenes) -> np.ndarray:
@@ -40,10 +39,10 @@ def main() -> int:
           f'{"median":>8s}')
     for rt in room_types:
         rows = {
-            'corpus': [generate_room(rt, SHELL_SEED, i) for i in range(args.n)],
-            'synthesized, no contact': [without.generate(empty_room(rt, SHELL_SEED, i),
+            'corpus': [generate_room(rt, HELDOUT_SEED, i) for i in range(args.n)],
+            'synthesized, no contact': [without.generate(empty_room(rt, HELDOUT_SEED, i),
                                                          seed=i).scene for i in range(args.n)],
-            'synthesized (default)': [with_step.generate(empty_room(rt, SHELL_SEED, i),
+            'synthesized (default)': [with_step.generate(empty_room(rt, HELDOUT_SEED, i),
                                                          seed=i).scene for i in range(args.n)],
         }
         for name, scenes in rows.items():

@@ -1,12 +1,19 @@
 """Shared fixtures: a tiny trained bundle, so that synthesis can be tested end to end without
-depending on the quality of the shipped weights."""
+depending on the quality of the shipped weights; the command line run in this process; and
+where the repository and its example files are."""
+from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
 import torch
 
-from scene_synth_ros.networks.config import (EncoderConfig, ModelConfig, ModuleSchedule,
-                                           PipelineConfig, TrainConfig)
+from scene_synth_ros.networks.config import (
+    EncoderConfig,
+    ModelConfig,
+    ModuleSchedule,
+    PipelineConfig,
+    TrainConfig,
+)
 
 
 def tiny_config(steps: int = 4) -> PipelineConfig:
@@ -34,3 +41,40 @@ def tiny_weights(tmp_path_factory) -> Path:
     finally:
         torch.set_num_threads(threads)
     return root / 'weights'
+
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLES = ROOT / 'examples'
+
+
+@dataclass
+class CliRun:
+    """One command's exit code and output, with the names ``subprocess.run`` gives them."""
+
+    returncode: int
+    stdout: str
+    stderr: str
+
+
+@pytest.fixture
+def cli(capsys):
+    """``cli(*args, ok=True)`` runs ``scene-synth *args`` through ``main(argv)`` in this
+    process and returns a ``CliRun``; with ``ok`` it also asserts exit code 0."""
+    from scene_synth_ros.cli import main
+
+    def run(*args, ok: bool = True) -> CliRun:
+        capsys.readouterr()                 # drop output from before, so this is the command's
+        threads = torch.get_num_threads()
+        try:
+            code = main([str(a) for a in args])
+        except SystemExit as e:             # argparse: usage errors and --help
+            code = int(e.code or 0)
+        finally:
+            # `train` sets the thread count of what would be its own process.
+            torch.set_num_threads(threads)
+        out, err = capsys.readouterr()
+        if ok:
+            assert code == 0, err
+        return CliRun(code, out, err)
+
+    return run

@@ -1,44 +1,43 @@
-"""scene-synth generate / complete / suggest / train / gallery, run as a user runs them."""
+"""scene-synth generate / complete / suggest / train / gallery / demo, through the command
+line's ``main(argv)`` (the ``cli`` fixture)."""
 import json
+
+from conftest import EXAMPLES
 
 from scene_synth_ros.geometry import check_scene
 from scene_synth_ros.networks.bundle import load_bundle
 from scene_synth_ros.schema import load_scene
 
-from test_cli import ROOT, run
 
-EXAMPLES = ROOT / 'examples'
-
-
-def test_generate_from_a_layout_and_from_a_room_type(tmp_path):
+def test_generate_from_a_layout_and_from_a_room_type(cli, tmp_path):
     out, png = tmp_path / 'living.json', tmp_path / 'living.png'
-    proc = run('generate', '--layout', EXAMPLES / 'lshaped_living_layout.json', '--seed', 3,
+    proc = cli('generate', '--layout', EXAMPLES / 'lshaped_living_layout.json', '--seed', 3,
                '--out', out, '--png', png)
     scene = load_scene(out)
     assert len(scene.room.floor) == 6 and len(scene) >= 2 and check_scene(scene).ok
     assert scene.meta['seed'] == 3 and png.stat().st_size > 10_000
     assert 'ms per module: render' in proc.stdout and 'physical check: valid' in proc.stdout
-    run('generate', '--room-type', 'bathroom', '--seed', 0, '--out', tmp_path / 'a.json')
-    run('generate', '--room-type', 'bathroom', '--seed', 0, '--out', tmp_path / 'b.json')
+    cli('generate', '--room-type', 'bathroom', '--seed', 0, '--out', tmp_path / 'a.json')
+    cli('generate', '--room-type', 'bathroom', '--seed', 0, '--out', tmp_path / 'b.json')
     assert (tmp_path / 'a.json').read_text() == (tmp_path / 'b.json').read_text()
 
 
-def test_complete_keeps_the_objects_and_suggest_proposes(tmp_path):
+def test_complete_keeps_the_objects_and_suggest_proposes(cli, tmp_path):
     out = tmp_path / 'done.json'
-    run('complete', EXAMPLES / 'partial_bedroom.json', '--seed', 1, '--out', out)
+    cli('complete', EXAMPLES / 'partial_bedroom.json', '--seed', 1, '--out', out)
     partial = load_scene(EXAMPLES / 'partial_bedroom.json')
     done = load_scene(out)
     assert [o.to_dict() for o in done.objects[:len(partial)]] == \
         [o.to_dict() for o in partial.objects]
     assert len(done) > len(partial) and check_scene(done).ok
-    proc = run('suggest', EXAMPLES / 'partial_bedroom.json', '-k', 3, '--out',
+    proc = cli('suggest', EXAMPLES / 'partial_bedroom.json', '-k', 3, '--out',
                tmp_path / 'next.json', '--png', tmp_path / 'next.png')
     proposals = json.loads((tmp_path / 'next.json').read_text())
     assert 1 <= len(proposals) <= 3 and 'proposals for the next object' in proc.stdout
     assert (tmp_path / 'next.png').is_file()
 
 
-def test_synthesis_bad_input_is_one_sentence(tmp_path):
+def test_synthesis_bad_input_is_one_sentence(cli, tmp_path):
     for args, words in [
             (('generate', '--room-type', 'kitchen'), 'unknown room type'),
             (('generate', '--room-type', 'all'), 'one --room-type'),
@@ -46,18 +45,18 @@ def test_synthesis_bad_input_is_one_sentence(tmp_path):
             (('generate', '--temperature', '0'), 'must be positive'),
             (('complete', tmp_path / 'nothing.json'), 'no such file'),
             (('suggest', EXAMPLES / 'partial_bedroom.json', '-k', '0'), 'at least 1')]:
-        proc = run(*args, ok=False)
+        proc = cli(*args, ok=False)
         assert proc.returncode == 2, (args, proc.stderr)
         assert words in proc.stderr and 'Traceback' not in proc.stderr
         assert len(proc.stderr.strip().splitlines()) == 1
     broken = tmp_path / 'w'
     broken.mkdir()
     (broken / 'bedroom.pt').write_bytes(b'not a weights file')
-    proc = run('generate', '--weights-dir', broken, ok=False)
+    proc = cli('generate', '--weights-dir', broken, ok=False)
     assert proc.returncode == 2 and 'bedroom.pt: not a readable weights file' in proc.stderr
 
 
-def test_train_command_writes_a_loadable_bundle(tmp_path):
+def test_train_command_writes_a_loadable_bundle(cli, tmp_path):
     cfg = tmp_path / 'tiny.yaml'
     cfg.write_text('''name: tiny
 device: cpu
@@ -80,14 +79,14 @@ train:
   dimensions: {steps: 2, batch_size: 4}
 ''')
     # Some modules alone: trained, nothing exported; then all of them: the bundle.
-    proc = run('train', '--room-type', 'bathroom', '--config', cfg, '--run-dir',
+    proc = cli('train', '--room-type', 'bathroom', '--config', cfg, '--run-dir',
                tmp_path / 'run', '--weights-dir', tmp_path / 'w', '--quiet',
                '--modules', 'location,snap')
     assert 'run again over all modules to export' in proc.stdout
     assert sorted(p.name for p in (tmp_path / 'run' / 'bathroom').glob('*.ckpt')) == \
         ['location.ckpt', 'snap.ckpt']
     assert not (tmp_path / 'w').exists()
-    proc = run('train', '--room-type', 'bathroom', '--config', cfg, '--run-dir',
+    proc = cli('train', '--room-type', 'bathroom', '--config', cfg, '--run-dir',
                tmp_path / 'run', '--weights-dir', tmp_path / 'w', '--quiet')
     assert 'category top-1 accuracy' in proc.stdout
     b = load_bundle(tmp_path / 'w' / 'bathroom.pt')
@@ -98,21 +97,21 @@ train:
                                               'dimensions'}
     bad = tmp_path / 'bad.yaml'
     bad.write_text('model: {resolution: [64}\n')
-    proc = run('train', '--config', bad, ok=False)
+    proc = cli('train', '--config', bad, ok=False)
     assert proc.returncode == 2 and 'not valid YAML' in proc.stderr
-    proc = run('train', '--config', cfg, '--modules', 'colour', ok=False)
+    proc = cli('train', '--config', cfg, '--modules', 'colour', ok=False)
     assert proc.returncode == 2 and "unknown module 'colour'" in proc.stderr
-    proc = run('train', '--config', tmp_path / 'none.yaml', ok=False)
+    proc = cli('train', '--config', tmp_path / 'none.yaml', ok=False)
     assert proc.returncode == 2 and 'no such configuration file' in proc.stderr
 
 
-def test_galleries(tmp_path):
-    run('gallery', '--source', 'completions', '--per-type', 2, '--out', tmp_path / 'c.png')
+def test_galleries(cli, tmp_path):
+    cli('gallery', '--source', 'completions', '--per-type', 2, '--out', tmp_path / 'c.png')
     assert (tmp_path / 'c.png').stat().st_size > 10_000
 
 
-def test_demo_furnishes_every_kind_of_room(tmp_path):
-    proc = run('demo', '--out', tmp_path, '--per-type', 1)
+def test_demo_furnishes_every_kind_of_room(cli, tmp_path):
+    proc = cli('demo', '--out', tmp_path, '--per-type', 1)
     names = ['bedroom_layout', 'lshaped_living_layout', 'partial_bedroom_completed',
              'bedroom_0', 'living_0', 'office_0', 'bathroom_0']
     for name in names:

@@ -4,24 +4,26 @@ from dataclasses import replace
 from itertools import permutations
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 import torch
 
 from scene_synth_ros.corpus.generate import generate_corpus
+from scene_synth_ros.errors import UnknownRoomType
 from scene_synth_ros.evaluation import classifier, components, distribution, plausibility
 from scene_synth_ros.evaluation import similarity as sim
 from scene_synth_ros.evaluation.perturb import perturb_all, perturb_scene
-from scene_synth_ros.evaluation.run import (EvalConfig, EvaluationError, finite_numbers,
-                                            prepare_out_dir, run_evaluation)
+from scene_synth_ros.evaluation.run import (
+    EvalConfig,
+    EvaluationError,
+    finite_numbers,
+    prepare_out_dir,
+    run_evaluation,
+)
 from scene_synth_ros.networks.bundle import bundle_path, load_bundle
 from scene_synth_ros.paths import weights_dir
 from scene_synth_ros.scene import Room, Scene
-
-from test_cli import ROOT
 
 
 @pytest.fixture(scope='module')
@@ -98,8 +100,8 @@ def test_matching_is_optimal_and_max_similarity_finds_the_room_itself(bedrooms, 
 def test_perturbation_moves_objects_by_the_expected_scale(bedrooms):
     moved = perturb_all(bedrooms, 0.10, 0)
     along, across = [], []
-    for s, p in zip(bedrooms, moved):
-        for o, q in zip(s.objects, p.objects):
+    for s, p in zip(bedrooms, moved, strict=True):
+        for o, q in zip(s.objects, p.objects, strict=True):
             d = np.subtract(q.position[:2], o.position[:2])
             along.append(d @ o.front / o.depth)
             across.append(d @ np.array([-o.front[1], o.front[0]]) / o.width)
@@ -171,12 +173,12 @@ def test_eval_config_defaults_are_the_paper_sizes_and_bad_sizes_are_refused(tmp_
     blocker.write_text('')
     with pytest.raises(EvaluationError, match='cannot write'):
         prepare_out_dir(blocker / 'report')
-    with pytest.raises(EvaluationError, match='unknown room type'):
+    with pytest.raises(UnknownRoomType, match='unknown room type'):
         run_evaluation(['kitchen'], EvalConfig.quick(), tmp_path, progress=False)
 
 
 # ---- the whole run ----------------------------------------------------------------------------
-def test_quick_report_of_one_room_type_is_written_with_finite_numbers(tmp_path):
+def test_quick_report_of_one_room_type_is_written_with_finite_numbers(cli, tmp_path):
     out = tmp_path / 'report'
     results = run_evaluation(['bathroom'], EvalConfig.quick(seed=2), out, workers=1,
                              progress=False, echo=lambda s: None)
@@ -203,22 +205,18 @@ def test_quick_report_of_one_room_type_is_written_with_finite_numbers(tmp_path):
     (out / 'index.md').unlink()
     copy = tmp_path / 'docs' / 'evaluation.md'
     copy.parent.mkdir()
-    proc = subprocess.run([sys.executable, '-m', 'scene_synth_ros.cli', 'evaluate',
-                           '--report-only', '--out', str(out), '--markdown', str(copy)],
-                          capture_output=True, text=True, cwd=ROOT, timeout=120)
+    proc = cli('evaluate', '--report-only', '--out', out, '--markdown', copy, ok=False)
     assert proc.returncode == 0, proc.stderr
     assert (out / 'index.md').read_text() == index
     assert '(../report/gallery_bathroom.png)' in copy.read_text()
 
 
-def test_cli_bad_input_is_one_sentence(tmp_path):
+def test_cli_bad_input_is_one_sentence(cli, tmp_path):
     blocker = tmp_path / 'file'
     blocker.write_text('')
     for args, words in ((('--room-type', 'kitchen'), 'unknown room type'),
                         (('--out', blocker / 'report'), 'cannot write the report'),
                         (('--workers', '0'), 'at least 1')):
-        proc = subprocess.run([sys.executable, '-m', 'scene_synth_ros.cli', 'evaluate',
-                               '--quick', *map(str, args)], capture_output=True, text=True,
-                              cwd=ROOT, timeout=120)
+        proc = cli('evaluate', '--quick', *args, ok=False)
         assert proc.returncode == 2, proc.stderr
         assert words in proc.stderr and len(proc.stderr.strip().splitlines()) == 1

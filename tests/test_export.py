@@ -2,6 +2,7 @@
 import math
 from xml.etree import ElementTree as ET
 
+from conftest import EXAMPLES
 import numpy as np
 import pytest
 import trimesh
@@ -10,13 +11,11 @@ from scene_synth_ros.corpus.generate import generate_room
 from scene_synth_ros.export import export_gltf, export_sdf, floor_slab, wall_boxes
 from scene_synth_ros.schema import load_scene
 
-from test_cli import ROOT, run
-
 
 @pytest.fixture(scope='module')
 def rooms():
     return [generate_room('bedroom', 0, 1), generate_room('living', 0, 2),
-            load_scene(ROOT / 'examples' / 'lshaped_living_layout.json')]
+            load_scene(EXAMPLES / 'lshaped_living_layout.json')]
 
 
 def test_walls_leave_the_openings_open(rooms):
@@ -79,11 +78,11 @@ def test_gltf_is_y_up_with_room_and_objects(rooms, tmp_path):
     assert lo[1] == pytest.approx(-0.05, abs=1e-3)
 
 
-def test_export_command(tmp_path):
-    scene = ROOT / 'examples' / 'partial_bedroom.json'
-    proc = run('export', scene, '--sdf', tmp_path / 'w.sdf', '--gltf', tmp_path / 'r.glb')
+def test_export_command(cli, tmp_path):
+    scene = EXAMPLES / 'partial_bedroom.json'
+    proc = cli('export', scene, '--sdf', tmp_path / 'w.sdf', '--gltf', tmp_path / 'r.glb')
     assert 'wrote' in proc.stdout
     assert (tmp_path / 'w.sdf').is_file() and (tmp_path / 'r.glb').stat().st_size > 1000
     assert (tmp_path / 'w_meshes').is_dir()
-    proc = run('export', scene, ok=False)
+    proc = cli('export', scene, ok=False)
     assert proc.returncode == 2 and 'needs --sdf and/or --gltf' in proc.stderr

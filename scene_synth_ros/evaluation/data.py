@@ -2,7 +2,7 @@
 
 * the training corpus: corpus rooms of seed ``CORPUS_SEED`` (0), the seed the shipped
   weights were trained on (its rooms 0..2999 are exactly their training rooms);
-* held-out corpus rooms: seed ``HELDOUT_SEED`` (1), which training never saw;
+* held-out corpus rooms: seed ``corpus.HELDOUT_SEED`` (1), which training never saw;
 * synthesized rooms: the empty shells of those held-out rooms, furnished by the pipeline,
   room ``i`` with synthesis seed ``seed * SEED_STRIDE + i``. Room ``i`` of the held-out
   corpus and synthesized room ``i`` therefore share their walls, doors and windows.
@@ -13,12 +13,12 @@ from dataclasses import dataclass, field
 
 from tqdm import tqdm
 
+from ..corpus import HELDOUT_SEED
 from ..corpus.generate import empty_room, generate_corpus
 from ..scene import Scene
 from .parallel import pmap
 
 CORPUS_SEED = 0
-HELDOUT_SEED = 1
 SEED_STRIDE = 100_000
 WARMUP_INDEX = 10 ** 6      # a shell used only to warm a worker up, never evaluated
 

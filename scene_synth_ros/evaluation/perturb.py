@@ -31,6 +31,11 @@ def perturb_scene(scene: Scene, scale: float, rng: np.random.Generator) -> Scene
     return Scene(scene.room, objects, meta)
 
 
+def perturbation_key(level: float) -> str:
+    """The results' name of the baseline perturbed by ``level`` (``perturbed_5`` for 0.05)."""
+    return f'perturbed_{100 * level:g}'
+
+
 def perturb_all(scenes, scale: float, seed) -> list[Scene]:
     """Every scene perturbed with one generator seeded by ``seed`` (an int or a sequence)."""
     rng = np.random.default_rng(seed)

@@ -7,9 +7,11 @@ import math
 import os
 from pathlib import Path
 
+from ..corpus import HELDOUT_SEED
 from ..synth import MODULES
 from . import paper
-from .data import CORPUS_SEED, HELDOUT_SEED, SEED_STRIDE
+from .data import CORPUS_SEED, SEED_STRIDE
+from .perturb import perturbation_key
 
 
 def _pct(x) -> str:
@@ -26,7 +28,6 @@ def _table(header: list[str], rows: list[list[str]]) -> list[str]:
 
 
 def _classifier_keys(cfg: dict) -> list[tuple[str, str]]:
-    from .run import perturbation_key
     keys = [('synthesized', 'synthesized (ours)')]
     for p in cfg['perturbations']:
         label = 'held-out corpus (control)' if p == 0 else f'perturbed {100 * p:g} %'
@@ -323,5 +324,5 @@ def terminal_summary(results: dict) -> str:
             's/room', 'valid', 'max-sim syn/held']
     rows = summary_rows(results)
     widths = [max(len(h), *(len(r[k]) for r in rows)) for k, h in enumerate(head)]
-    line = lambda cells: '  '.join(c.ljust(w) for c, w in zip(cells, widths))  # noqa: E731
+    line = lambda cells: '  '.join(c.ljust(w) for c, w in zip(cells, widths, strict=True))  # noqa: E731
     return '\n'.join([line(head)] + [line(r) for r in rows])

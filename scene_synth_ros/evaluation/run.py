@@ -14,7 +14,9 @@ from typing import Callable, Sequence
 import numpy as np
 
 from ..categories import ROOM_TYPES, resolve_room_type
+from ..corpus import HELDOUT_SEED
 from ..errors import SceneSynthError
+from .perturb import perturb_all, perturbation_key
 
 EvalEcho = Callable[[str], None]
 
@@ -77,10 +79,6 @@ class EvalConfig:
             raise ValueError('perturbations are fractions of a bounding box in [0, 1)')
 
 
-def perturbation_key(level: float) -> str:
-    return f'perturbed_{100 * level:g}'
-
-
 def prepare_out_dir(out: str | Path) -> Path:
     """Create ``out`` and check a file can be written in it."""
     out = Path(out)
@@ -127,10 +125,17 @@ def evaluate_room_type(room_type: str, cfg: EvalConfig, out: Path, bundle: dict,
                        workers: int = 1, weights_dir=None, progress: bool = True,
                        echo: EvalEcho = print) -> dict:
     """Every measurement of one room type; writes its figures into ``out``."""
-    from . import classifier, components, data, distribution, figures, plausibility, \
-        similarity, speed
+    from . import (
+        classifier,
+        components,
+        data,
+        distribution,
+        figures,
+        plausibility,
+        similarity,
+        speed,
+    )
     from .parallel import pmap
-    from .perturb import perturb_all
 
     rt = resolve_room_type(room_type)
     k_rt = ROOM_TYPES.index(rt)
@@ -146,7 +151,7 @@ def evaluate_room_type(room_type: str, cfg: EvalConfig, out: Path, bundle: dict,
         echo(f'  {rt}: {name} done in {stages[name]:.1f} s')
 
     corpus = data.corpus_rooms(rt, cfg.corpus_rooms, data.CORPUS_SEED, workers, progress)
-    heldout = data.corpus_rooms(rt, cfg.heldout_rooms, data.HELDOUT_SEED, workers, progress)
+    heldout = data.corpus_rooms(rt, cfg.heldout_rooms, HELDOUT_SEED, workers, progress)
     stage('corpus rooms')
     records = data.synthesize(rt, cfg.synth_rooms, cfg.seed, workers, weights_dir, progress)
     synth = [r.scene for r in records]

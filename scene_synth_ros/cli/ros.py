@@ -1,8 +1,5 @@
-"""``scene-synth ros ...``: the node's clients and its demo on the command line.
-
-rclpy is imported only when one of these commands runs, so the rest of the command line
-works without ROS.
-"""
+"""``scene-synth ros ...``: the node's clients (publish a layout, call its services, echo its
+topics, get and set its parameters) and the node demo, on rclpy."""
 from __future__ import annotations
 
 import json
@@ -12,8 +9,7 @@ import random
 import signal
 import time
 
-from .cli import UserError, _object_table
-from .scene import PlacedObject
+from .common import WEIGHTS_DIR_HELP, UserError, object_table, write_scene
 
 DEMO_NODE_START_TIMEOUT = 90.0
 
@@ -56,12 +52,12 @@ def add_parser(sub) -> None:
     c = rsub.add_parser('demo', help='start the node, furnish an example room, complete a '
                         'partial one object at a time, stop the node')
     c.add_argument('--out', default='demo_out')
-    c.add_argument('--weights-dir', help="trained bundles (default: the package's weights/)")
+    c.add_argument('--weights-dir', help=WEIGHTS_DIR_HELP)
     c.set_defaults(func=cmd_demo)
 
 
 def _client(args):
-    from .ros_client import SceneSynthClient
+    from ..ros_client import SceneSynthClient
     domain = args.domain_id
     if domain is None:
         domain = int(os.environ.get('ROS_DOMAIN_ID', '0') or 0)
@@ -70,30 +66,13 @@ def _client(args):
     return SceneSynthClient(args.node, domain)
 
 
-def _guard(fn):
-    """Run ``fn`` and turn the clients' errors into one-sentence user errors."""
-    from .ros_client import ClientError
-    try:
-        return fn()
-    except ClientError as e:
-        raise UserError(str(e)) from None
-
-
 def _show_scene(d: dict, out: str | None, png: str | None, title: str) -> None:
-    from .schema import parse_scene, save_scene
+    """Print the node's room as a table, and write it where asked."""
+    from ..schema import parse_scene
     scene = parse_scene(d)
-    meta = scene.meta
-    print(_object_table(scene.objects, f'{scene.room.room_type}, {scene.room.area:.1f} m², '
-                        f'{len(scene)} objects (seed {meta.get("seed")})'))
-    if out:
-        Path(out).parent.mkdir(parents=True, exist_ok=True)
-        save_scene(scene, out)
-        print(f'wrote {out}')
-    if png:
-        from .plot import save_png
-        Path(png).parent.mkdir(parents=True, exist_ok=True)
-        save_png(scene, png, title=title)
-        print(f'wrote {png}')
+    print(object_table(scene.objects, f'{scene.room.room_type}, {scene.room.area:.1f} m², '
+                       f'{len(scene)} objects (seed {scene.meta.get("seed")})'))
+    write_scene(scene, out, png, title)
 
 
 def cmd_publish_layout(args) -> int:
@@ -102,8 +81,7 @@ def cmd_publish_layout(args) -> int:
     except OSError as e:
         raise UserError(f'{args.layout}: {e.strerror}') from None
     with _client(args) as client:
-        d = _guard(lambda: client.publish_layout(text, wait=not args.no_wait,
-                                                 timeout=args.timeout))
+        d = client.publish_layout(text, wait=not args.no_wait, timeout=args.timeout)
         if d is None:
             print(f'published {args.layout}')
             return 0
@@ -113,36 +91,32 @@ def cmd_publish_layout(args) -> int:
 
 def cmd_service(args) -> int:
     with _client(args) as client:
-        ok, message = _guard(lambda: client.call(args.service, args.timeout))
+        ok, message = client.call(args.service, args.timeout)
     if not ok:
         raise UserError(f'{args.service} refused: {message}')
     print(message)
     return 0
 
 
+def _wait_for_next(client, topic: str, timeout: float) -> None:
+    """Spin until a message of ``topic`` newer than the latest one arrives."""
+    seen = client.count(topic)
+    client.spin_until(lambda: client.count(topic) > seen, timeout, topic)
+
+
 def cmd_echo(args) -> int:
-    from .ros_client import format_markers, format_poses
+    from ..ros_client import format_markers, format_poses
+    formats = {'scene': lambda msg: msg.data, 'markers': format_markers,
+               'poses': format_poses}
     with _client(args) as client:
         for k in range(args.count):
-            seen = client.count(args.topic)
-            if k and args.topic != 'diagnostics':
-                _guard(lambda: client.spin_until(lambda: client.count(args.topic) > seen,
-                                                 args.timeout, args.topic))
+            if k:
+                _wait_for_next(client, args.topic, args.timeout)
             if args.topic == 'diagnostics':
-                if k:
-                    _guard(lambda: client.spin_until(
-                        lambda: client.count('diagnostics') > seen, args.timeout,
-                        'diagnostics'))
-                d = _guard(lambda: client.diagnostics(args.timeout))
-                print('\n'.join(f'{k}: {v}' for k, v in d.items()))
+                d = client.diagnostics(args.timeout)
+                print('\n'.join(f'{name}: {value}' for name, value in d.items()))
                 continue
-            msg = _guard(lambda: client.latest(args.topic, args.timeout))
-            if args.topic == 'scene':
-                print(msg.data)
-            elif args.topic == 'markers':
-                print(format_markers(msg))
-            else:
-                print(format_poses(msg))
+            print(formats[args.topic](client.latest(args.topic, args.timeout)))
             if k + 1 < args.count:
                 print('---')
     return 0
@@ -152,7 +126,7 @@ def cmd_param(args) -> int:
     import yaml
     with _client(args) as client:
         if args.action == 'get':
-            values = _guard(lambda: client.get_parameters([args.name], args.timeout))
+            values = client.get_parameters([args.name], args.timeout)
             print(f'{args.name}: {values[args.name]!r}')
             return 0
         if args.value is None:
@@ -160,10 +134,10 @@ def cmd_param(args) -> int:
         value = yaml.safe_load(args.value)
         if value is None:
             value = ''
-        current = _guard(lambda: client.get_parameters([args.name], args.timeout))
+        current = client.get_parameters([args.name], args.timeout)
         if isinstance(current[args.name], float) and type(value) is int:
             value = float(value)        # `param set location_temperature 1` means 1.0
-        refused = _guard(lambda: client.set_parameters({args.name: value}, args.timeout))
+        refused = client.set_parameters({args.name: value}, args.timeout)
     if refused:
         raise UserError(f'the node refused {refused[0]}')
     print(f'{args.name} set to {value!r}')
@@ -171,11 +145,48 @@ def cmd_param(args) -> int:
 
 
 # ---- the demo -----------------------------------------------------------------------------
+def _demo_layout(client, out: Path, timeout: float) -> None:
+    """Publish the example bedroom layout and show the room the node furnishes."""
+    from ..paths import examples_dir
+    layout = examples_dir() / 'bedroom_layout.json'
+    t = time.perf_counter()
+    d = client.publish_layout(layout.read_text(), timeout=timeout)
+    latency = time.perf_counter() - t
+    markers = client.latest('markers')
+    poses = client.latest('poses')
+    print(f'\npublished {layout.name}; the room arrived after {latency:.2f} s '
+          f'({len(markers.markers)} markers, {len(poses.poses)} poses)')
+    _show_scene(d, str(out / 'ros_bedroom.json'), str(out / 'ros_bedroom.png'),
+                f'{layout.stem} via scene_synth_node (seed {d["meta"]["seed"]})')
+
+
+def _demo_next_object(client, out: Path, timeout: float) -> None:
+    """Publish the example partial room unfurnished and ask the node for one more object."""
+    from ..paths import examples_dir
+    from ..scene import PlacedObject
+    refused = client.set_parameters({'auto_generate': False})
+    if refused:
+        raise UserError(f'the node refused {refused[0]}')
+    partial = examples_dir() / 'partial_bedroom.json'
+    d = client.publish_layout(partial.read_text(), timeout=timeout)
+    print(f'\nauto_generate set to false; published {partial.name} '
+          f'({len(d["objects"])} objects); calling ~/next_object')
+    before = client.count('scene')
+    t = time.perf_counter()
+    ok, message = client.call('next_object', timeout)
+    if not ok:
+        raise UserError(f'next_object refused: {message}')
+    print(f'next_object answered in {time.perf_counter() - t:.2f} s:')
+    print(object_table([PlacedObject.from_dict(json.loads(message))]))
+    d = client.wait_scene(before, timeout)
+    _show_scene(d, str(out / 'ros_partial_next.json'), str(out / 'ros_partial_next.png'),
+                f'{partial.stem} + next_object via scene_synth_node')
+
+
 def cmd_demo(args) -> int:
     """Start the node in a child process, publish an example layout, show the room, ask for
     one more object in a partial room, and stop the node with SIGINT."""
-    from .paths import examples_dir
-    from .ros_client import ClientError, SceneSynthClient, start_node, stop_node
+    from ..ros_client import ClientError, SceneSynthClient, start_node, stop_node
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     domain = args.domain_id
@@ -188,7 +199,6 @@ def cmd_demo(args) -> int:
     with open(log_path, 'w') as log:
         proc = start_node(domain, params, log)
     print(f'started scene_synth_node (pid {proc.pid}, ROS_DOMAIN_ID={domain}, log {log_path})')
-    code = None
     try:
         with SceneSynthClient(args.node, domain) as client:
             try:
@@ -198,38 +208,10 @@ def cmd_demo(args) -> int:
                     raise UserError(f'the node exited with code {proc.returncode} at start-up; '
                                     f'see {log_path}')
                 print(f'node ready after {time.perf_counter() - t0:.1f} s')
-
-                layout = examples_dir() / 'bedroom_layout.json'
-                t = time.perf_counter()
-                d = client.publish_layout(layout.read_text(), timeout=args.timeout)
-                latency = time.perf_counter() - t
-                markers = client.latest('markers')
-                poses = client.latest('poses')
-                print(f'\npublished {layout.name}; the room arrived after {latency:.2f} s '
-                      f'({len(markers.markers)} markers, {len(poses.poses)} poses)')
-                _show_scene(d, str(out / 'ros_bedroom.json'), str(out / 'ros_bedroom.png'),
-                            f'{layout.stem} via scene_synth_node (seed {d["meta"]["seed"]})')
-
-                refused = client.set_parameters({'auto_generate': False})
-                if refused:
-                    raise UserError(f'the node refused {refused[0]}')
-                partial = examples_dir() / 'partial_bedroom.json'
-                d = client.publish_layout(partial.read_text(), timeout=args.timeout)
-                print(f'\nauto_generate set to false; published {partial.name} '
-                      f'({len(d["objects"])} objects); calling ~/next_object')
-                before = client.count('scene')
-                t = time.perf_counter()
-                ok, message = client.call('next_object', args.timeout)
-                if not ok:
-                    raise UserError(f'next_object refused: {message}')
-                print(f'next_object answered in {time.perf_counter() - t:.2f} s:')
-                obj = PlacedObject.from_dict(json.loads(message))
-                print(_object_table([obj]))
-                d = client.wait_scene(before, args.timeout)
-                _show_scene(d, str(out / 'ros_partial_next.json'),
-                            str(out / 'ros_partial_next.png'),
-                            f'{partial.stem} + next_object via scene_synth_node')
+                _demo_layout(client, out, args.timeout)
+                _demo_next_object(client, out, args.timeout)
             except ClientError as e:
+                # The node's log says why it did not answer; the client cannot.
                 raise UserError(f'{e} (node log: {log_path})') from None
     finally:
         code = stop_node(proc, signal.SIGINT)

@@ -1,0 +1,63 @@
+"""What the command groups share: the user-error type, room-type arguments, loading a scene
+file with a one-sentence error, and the object table and file outputs of a furnished room."""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from ..categories import ROOM_TYPES, resolve_room_type
+from ..errors import SceneSynthError
+
+EXIT_BAD_INPUT = 2
+WEIGHTS_DIR_HELP = "trained bundles (default: the package's weights/)"
+
+
+class UserError(SceneSynthError):
+    """Bad command-line input: printed as one sentence, exit code 2, no traceback."""
+
+
+def room_types(value: str) -> list[str]:
+    """The room types a ``--room-type`` value names: one, or every one for ``all``."""
+    if value == 'all':
+        return list(ROOM_TYPES)
+    return [resolve_room_type(value)]
+
+
+def load_scene_file(path: str):
+    """The scene (or room layout) in ``path``; an error names the file."""
+    from ..schema import SceneValidationError, load_scene
+    try:
+        return load_scene(path)
+    except FileNotFoundError:
+        raise UserError(f'{path}: no such file') from None
+    except SceneValidationError as e:
+        # The validator says what is wrong inside the document, not which document.
+        raise UserError(f'{path}: {e}') from None
+
+
+def object_table(objects, title: str = '') -> str:
+    """Objects one per line: id, category, model, position, yaw, size and support."""
+    lines = [title] if title else []
+    lines.append(f'  {"id":18s} {"category":16s} {"model":18s} {"x":>6s} {"y":>6s} {"z":>5s} '
+                 f'{"yaw°":>6s} {"w x d x h (m)":>17s}  on')
+    for o in objects:
+        lines.append(f'  {o.id:18s} {o.category:16s} {o.model_id:18s} {o.position[0]:6.2f} '
+                     f'{o.position[1]:6.2f} {o.position[2]:5.2f} '
+                     f'{math.degrees(o.yaw):6.1f} {o.width:5.2f}x{o.depth:4.2f}x{o.height:4.2f}'
+                     f'  {o.support or ""}')
+    return '\n'.join(lines)
+
+
+def write_scene(scene, out: str | None, png: str | None, title: str) -> None:
+    """Save ``scene`` as JSON to ``out`` and/or as a picture to ``png`` (either may be None),
+    creating their directories and saying what was written."""
+    if out:
+        from ..schema import save_scene
+        Path(out).parent.mkdir(parents=True, exist_ok=True)
+        save_scene(scene, out)
+        print(f'wrote {out}')
+    if png:
+        from ..plot import save_png
+        Path(png).parent.mkdir(parents=True, exist_ok=True)
+        save_png(scene, png, title=title)
+        print(f'wrote {png}')

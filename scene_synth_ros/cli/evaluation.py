@@ -1,0 +1,76 @@
+"""``scene-synth evaluate``: the paper's evaluation of synthesized rooms, written as a
+report (``index.md``, ``results.json``, figures) and summarised in the terminal."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from ..categories import ROOM_TYPES
+from .common import WEIGHTS_DIR_HELP, UserError, room_types
+
+
+def add_parser(sub) -> None:
+    c = sub.add_parser('evaluate', help="the paper's evaluation of synthesized rooms: "
+                       'category KL, real-vs-synthetic classifier, speed, physical '
+                       'plausibility, similarity to the training rooms, component metrics')
+    c.add_argument('--room-type', default='all', help=f'{"|".join(ROOM_TYPES)}|all')
+    c.add_argument('--out', default='report', help='directory for index.md, results.json '
+                   'and the figures')
+    c.add_argument('--seed', type=int, default=0)
+    c.add_argument('--quick', action='store_true', help='tiny sizes: a smoke test of the '
+                   'whole run, not a measurement')
+    c.add_argument('--workers', type=int, default=None, help='processes of one torch thread '
+                   'each (default: all cores)')
+    c.add_argument('--weights-dir', help=WEIGHTS_DIR_HELP)
+    c.add_argument('--quiet', action='store_true', help='no progress bars or stage lines')
+    c.add_argument('--markdown', help='also write the report here (its figure links point '
+                   'into --out), e.g. docs/evaluation.md')
+    c.add_argument('--report-only', action='store_true', help='measure nothing: write the '
+                   'report again from --out/results.json of an earlier run')
+    c.set_defaults(func=cmd_evaluate)
+
+
+def cmd_evaluate(args) -> int:
+    return _report_only(args) if args.report_only else _evaluate(args)
+
+
+def _report_only(args) -> int:
+    from ..evaluation.report import terminal_summary, write
+    path = Path(args.out) / 'results.json'
+    try:
+        results = json.loads(path.read_text(encoding='utf-8'))
+        write(results, Path(args.out), Path(args.markdown) if args.markdown else None)
+    except FileNotFoundError:
+        raise UserError(f'{path}: no such file; run the evaluation first') from None
+    except (ValueError, KeyError, TypeError) as e:
+        raise UserError(f'{path} is not the results of an evaluation ({e})') from None
+    print(terminal_summary(results))
+    print(f'\nwrote {Path(args.out) / "index.md"} from {path}')
+    return 0
+
+
+def _command(args) -> str:
+    """The command line the report quotes: what reproduces its numbers."""
+    return ' '.join(['scene-synth evaluate', '--room-type', args.room_type, '--out',
+                     args.out, '--seed', str(args.seed)]
+                    + (['--quick'] if args.quick else [])
+                    + (['--markdown', args.markdown] if args.markdown else []))
+
+
+def _evaluate(args) -> int:
+    import os
+
+    from ..evaluation.report import terminal_summary
+    from ..evaluation.run import EvalConfig, run_evaluation
+    rts = room_types(args.room_type)
+    if args.workers is not None and args.workers < 1:
+        raise UserError(f'--workers must be at least 1, got {args.workers}')
+    cfg = EvalConfig.quick(args.seed) if args.quick else EvalConfig(seed=args.seed)
+    results = run_evaluation(rts, cfg, args.out, args.workers or os.cpu_count() or 1,
+                             args.weights_dir, progress=not args.quiet,
+                             echo=(lambda s: None) if args.quiet else print,
+                             command=_command(args), markdown_copy=args.markdown)
+    print()
+    print(terminal_summary(results))
+    print(f'\nwrote {Path(args.out) / "index.md"} ({results["seconds"] / 60:.1f} min)')
+    return 0

@@ -1,0 +1,90 @@
+"""``scene-synth train`` and ``components``: training the four networks of a room type into
+a weights bundle, and the paper's component table of trained bundles."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from .common import WEIGHTS_DIR_HELP, UserError, room_types
+
+
+def add_parser(sub) -> None:
+    c = sub.add_parser('train', help='train the four networks of a room type (resumable)')
+    c.add_argument('--room-type', default='all', help='bedroom, living, office, bathroom or all')
+    c.add_argument('--config', help='model and training configuration (YAML; default: '
+                   'config/compact.yaml)')
+    c.add_argument('--device', choices=('cpu', 'cuda', 'auto'), help='overrides the config')
+    c.add_argument('--threads', type=int, help='torch threads (default: the config; 0 = all)')
+    c.add_argument('--run-dir', help='checkpoints and logs (default: runs/<config name>); '
+                   'an interrupted run started again with the same directory resumes')
+    c.add_argument('--weights-dir', help='where the trained bundles go (default: the '
+                   "package's weights/)")
+    c.add_argument('--modules', help='comma-separated subset of category, location, '
+                   'orientation, snap, dimensions to train (no export); several processes '
+                   'may train different modules of one room type at once')
+    c.add_argument('--quiet', action='store_true', help='no progress bars')
+    c.set_defaults(func=cmd_train)
+
+    c = sub.add_parser('components', help="the paper's component table of trained weights, "
+                       'beside randomly initialised networks (held-out corpus rooms)')
+    c.add_argument('--room-type', default='all')
+    c.add_argument('--weights-dir', help=WEIGHTS_DIR_HELP)
+    c.add_argument('--markdown', action='store_true', help='a Markdown table')
+    c.set_defaults(func=cmd_components)
+
+
+def _pipeline_config(path: str | None, device: str | None = None):
+    """The configuration in ``path`` (default: the shipped one); every error names the file,
+    which the parser's own messages do not."""
+    from ..networks.config import PipelineConfig
+    from ..paths import default_config_path
+    path = path or str(default_config_path())
+    try:
+        cfg = PipelineConfig.from_yaml(path)
+    except FileNotFoundError:
+        raise UserError(f'{path}: no such configuration file') from None
+    except (ValueError, TypeError) as e:
+        raise UserError(f'{path}: {e}') from None
+    except Exception as e:  # a YAML syntax error names its own line
+        raise UserError(f'{path}: not valid YAML ({str(e).splitlines()[0]})') from None
+    if device:
+        cfg.device = device
+    return cfg
+
+
+def cmd_train(args) -> int:
+    from ..networks.config import resolve_device
+    from ..networks.train import train
+    from ..paths import weights_dir
+    cfg = _pipeline_config(args.config, args.device)
+    if args.threads is not None:
+        cfg.train.threads = args.threads
+    try:
+        resolve_device(cfg.device)
+    except ValueError as e:     # a plain ValueError, which main() does not catch
+        raise UserError(str(e)) from None
+    run_root = Path(args.run_dir or f'runs/{cfg.name}')
+    out = Path(args.weights_dir) if args.weights_dir else weights_dir()
+    print(f'training {", ".join(room_types(args.room_type))} with the {cfg.name} '
+          f'configuration; checkpoints and logs in {run_root}, weights to {out}')
+    modules = tuple(m.strip() for m in args.modules.split(',')) if args.modules else None
+    try:
+        train(room_types(args.room_type), cfg, run_root, out, progress=not args.quiet,
+              **({'modules': modules} if modules else {}))
+    except ValueError as e:     # bad arguments, refused with plain ValueErrors
+        raise UserError(str(e)) from None
+    return 0
+
+
+def cmd_components(args) -> int:
+    from ..networks.bundle import bundle_path, load_bundle
+    from ..networks.train import format_components
+    from ..paths import weights_dir
+    tables = {}
+    for rt in room_types(args.room_type):
+        path = bundle_path(args.weights_dir or weights_dir(), rt)
+        b = load_bundle(path)
+        if 'components' not in b.metrics:
+            raise UserError(f'{path}: the bundle carries no component metrics')
+        tables[rt] = b.metrics['components']
+    print(format_components(tables, markdown=args.markdown))
+    return 0
