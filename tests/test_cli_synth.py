@@ -3,6 +3,7 @@ line's ``main(argv)`` (the ``cli`` fixture)."""
 import json
 
 from conftest import EXAMPLES
+import pytest
 
 from scene_synth_ros.geometry import check_scene
 from scene_synth_ros.networks.bundle import load_bundle
@@ -56,6 +57,7 @@ def test_synthesis_bad_input_is_one_sentence(cli, tmp_path):
     assert proc.returncode == 2 and 'bedroom.pt: not a readable weights file' in proc.stderr
 
 
+@pytest.mark.slow
 def test_train_command_writes_a_loadable_bundle(cli, tmp_path):
     cfg = tmp_path / 'tiny.yaml'
     cfg.write_text('''name: tiny
@@ -110,6 +112,7 @@ def test_galleries(cli, tmp_path):
     assert (tmp_path / 'c.png').stat().st_size > 10_000
 
 
+@pytest.mark.slow
 def test_demo_furnishes_every_kind_of_room(cli, tmp_path):
     proc = cli('demo', '--out', tmp_path, '--per-type', 1)
     names = ['bedroom_layout', 'lshaped_living_layout', 'partial_bedroom_completed',
