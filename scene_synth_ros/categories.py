@@ -269,7 +269,8 @@ def resolve_room_type(name: str) -> str:
     aliases = {'living room': 'living', 'livingroom': 'living', 'bed room': 'bedroom'}
     key = aliases.get(key, key)
     if key not in ROOM_TYPES:
-        raise UnknownRoomType(f'unknown room type {name!r}; expected one of {", ".join(ROOM_TYPES)}')
+        raise UnknownRoomType(f'unknown room type {name!r}; expected one of '
+                              f'{", ".join(ROOM_TYPES)}')
     return key
 
 
@@ -296,4 +297,5 @@ def kl_divergence(p: dict[str, float], q: dict[str, float], eps: float = 1e-6) -
     sp, sq = sum(ps), sum(qs)
     if sp <= 0:
         raise ValueError('KL divergence of an empty distribution is undefined')
-    return sum((a / sp) * math.log((a / sp) / (b / sq)) for a, b in zip(ps, qs) if a > 0)
+    return sum((a / sp) * math.log((a / sp) / (b / sq)) for a, b in zip(ps, qs, strict=True)
+               if a > 0)

@@ -24,7 +24,8 @@ from typing import Sequence
 import matplotlib
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.figure import Figure
-from matplotlib.patches import Arc, Patch, Polygon as PolygonPatch
+from matplotlib.patches import Arc, Patch
+from matplotlib.patches import Polygon as PolygonPatch
 import numpy as np
 
 from .categories import CATEGORIES

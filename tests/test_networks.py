@@ -2,24 +2,26 @@
 from dataclasses import replace
 import math
 
+from conftest import tiny_config
 import numpy as np
 import pytest
 import torch
 
 from scene_synth_ros.categories import room_spec
 from scene_synth_ros.corpus.generate import generate_room
-from scene_synth_ros.networks.bundle import (BundleError, build_networks, load_bundle,
-                                             save_bundle)
+from scene_synth_ros.networks.bundle import BundleError, build_networks, load_bundle, save_bundle
 from scene_synth_ros.networks.config import PipelineConfig, resolve_device
 from scene_synth_ros.networks.dimensions import box_sdf
-from scene_synth_ros.networks.examples import (ExampleSource, insertion_order, placeable,
-                                               rotate_scene)
+from scene_synth_ros.networks.examples import (
+    ExampleSource,
+    insertion_order,
+    placeable,
+    rotate_scene,
+)
 from scene_synth_ros.networks.location import location_distribution, sample_pixel
 from scene_synth_ros.networks.orientation import decode_angle, is_snapped, snap_angle
 from scene_synth_ros.paths import config_dir
 from scene_synth_ros.render import COS, SIN, Frame, TopDownRenderer
-
-from conftest import tiny_config
 
 
 @pytest.fixture(scope='module')
@@ -85,7 +87,8 @@ def test_insertion_order_rules(rooms):
                 seen.add(o.id)
             if by_importance:
                 for tier in (False, True):
-                    ranks = [rank[o.category] for o, t in zip(order, tiers) if t == tier]
+                    ranks = [rank[o.category] for o, t in zip(order, tiers, strict=True)
+                             if t == tier]
                     assert ranks == sorted(ranks)
     # Random order really is random: two draws of a room with many objects differ.
     big = max(rooms, key=len)
@@ -161,7 +164,7 @@ def test_rotation_augmentation_is_exact(rooms):
     for scene in rooms[:3]:
         back = rotate_scene(rotate_scene(scene, 3), 1)
         assert back.room.polygon.equals_exact(scene.room.polygon, 1e-9)
-        for a, b in zip(back.objects, scene.objects):
+        for a, b in zip(back.objects, scene.objects, strict=True):
             assert np.allclose(a.position, b.position, atol=1e-9)
             assert math.isclose(math.remainder(a.yaw - b.yaw, 2 * math.pi), 0, abs_tol=1e-9)
         base = r.render(scene, Frame.for_room(scene.room, 64))
@@ -239,7 +242,8 @@ def test_box_sdf_sign_and_gradient():
 
 # ---- training and bundles ----------------------------------------------------------------------
 def test_training_resumes_exactly(tmp_path):
-    from scene_synth_ros.networks.train import ExampleSource as _ES, load_corpus, train_module
+    from scene_synth_ros.networks.train import ExampleSource as _ES
+    from scene_synth_ros.networks.train import load_corpus, train_module
     cfg = tiny_config(steps=4)
     corpus = load_corpus('bathroom', cfg, workers=1)
     src = _ES('bathroom', corpus.train, 64, 64)

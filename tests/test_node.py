@@ -25,8 +25,14 @@ import yaml
 os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'   # before any rclpy.init
 
 from scene_synth_ros.paths import config_dir, examples_dir, weights_dir  # noqa: E402
-from scene_synth_ros.ros_client import (SceneSynthClient, node_command, node_env,  # noqa: E402
-                                        quaternion_yaw, start_node, stop_node)
+from scene_synth_ros.ros_client import (  # noqa: E402
+    SceneSynthClient,
+    node_command,
+    node_env,
+    quaternion_yaw,
+    start_node,
+    stop_node,
+)
 from scene_synth_ros.schema import parse_room_layout, parse_scene  # noqa: E402
 
 pytestmark = pytest.mark.slow     # every test here starts node processes
@@ -98,7 +104,7 @@ def _objects_agree(scene_d, markers, poses, frame='map'):
     assert len(poses.poses) == len(scene)
     assert poses.header.frame_id == frame
     assert all(m.header.frame_id == frame for m in markers.markers)
-    for o, m, p in zip(scene.objects, objs, poses.poses):
+    for o, m, p in zip(scene.objects, objs, poses.poses, strict=True):
         assert (p.position.x, p.position.y, p.position.z) == pytest.approx(o.position)
         assert math.cos(quaternion_yaw(p.orientation) - o.yaw) == pytest.approx(1.0)
         assert m.pose.position.x == pytest.approx(o.position[0])
@@ -191,7 +197,7 @@ def test_bad_input_is_rejected_in_one_sentence_and_the_node_keeps_serving(node):
         send()
         rejected += 1
         diag = client.spin_until(
-            lambda: (d := client.diagnostics()) and int(d['inputs rejected']) >= rejected and d,
+            lambda n=rejected: (d := client.diagnostics()) and int(d['inputs rejected']) >= n and d,
             15.0, f'rejection of the layout that {what}')
         assert diag['level'] == '1', what
         assert needle in diag['last error'] and '\n' not in diag['last error'], \

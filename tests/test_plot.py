@@ -13,8 +13,14 @@ import pytest
 
 from scene_synth_ros import catalog
 from scene_synth_ros.categories import CATEGORIES
-from scene_synth_ros.plot import (FLOOR_COLOR, category_color, category_colors, draw_scene,
-                                  save_grid, save_png)
+from scene_synth_ros.plot import (
+    FLOOR_COLOR,
+    category_color,
+    category_colors,
+    draw_scene,
+    save_grid,
+    save_png,
+)
 from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
 
 
@@ -52,7 +58,7 @@ def test_colors_are_fixed_and_distinct():
     assert category_color('wardrobe')[:3] == tuple(tab20[0])  # first category, first colour
     assert category_color('not a category')[:3] == (0.6, 0.6, 0.6)
     floor = matplotlib.colors.to_rgb(FLOOR_COLOR)
-    assert all(max(abs(a - b) for a, b in zip(c, floor)) > 0.05 for c in rgb)
+    assert all(max(abs(a - b) for a, b in zip(c, floor, strict=True)) > 0.05 for c in rgb)
     # Same mapping in a fresh interpreter.
     out = subprocess.run([sys.executable, '-c',
                           'from scene_synth_ros.plot import category_color as c;'

@@ -9,8 +9,8 @@ import pytest
 
 from scene_synth_ros import catalog, schema
 from scene_synth_ros.paths import examples_dir, schema_dir
-from scene_synth_ros.schema import SceneValidationError
 from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
+from scene_synth_ros.schema import SceneValidationError
 
 BEDROOM = {
     'room_type': 'bedroom',

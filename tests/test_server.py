@@ -9,8 +9,7 @@ import pytest
 from scene_synth_ros.networks.bundle import BundleError
 from scene_synth_ros.paths import examples_dir, weights_dir
 from scene_synth_ros.schema import parse_room_layout, parse_scene
-from scene_synth_ros.server import (ERROR, OK, WARN, ConfigError, SceneServer, ServerConfig,
-                                    check)
+from scene_synth_ros.server import ERROR, OK, WARN, ConfigError, SceneServer, ServerConfig, check
 
 LAYOUT = (examples_dir() / 'bedroom_layout.json').read_text()
 PARTIAL = (examples_dir() / 'partial_bedroom.json').read_text()

@@ -177,12 +177,12 @@ def test_errors_say_what_is_wrong(tmp_path, tiny_weights):
         Synthesizer(tiny_weights).complete(odd)
 
 
-# ---- the shipped weights --------------------------------------------------------------------------
+# ---- the shipped weights -------------------------------------------------------------------
 def test_shipped_weights_load_without_pickle_and_fit_the_budget():
     files = [weights_dir() / f'{rt}.pt' for rt in ROOM_TYPES]
     assert all(f.is_file() for f in files), 'train the weights: see the README'
     assert sum(f.stat().st_size for f in files) <= 40 * 2 ** 20
-    for rt, f in zip(ROOM_TYPES, files):
+    for rt, f in zip(ROOM_TYPES, files, strict=True):
         torch.load(f, weights_only=True)
         b = load_bundle(f)
         assert b.room_type == rt and b.config.name == 'compact'
@@ -265,7 +265,7 @@ def test_a_turned_room_is_furnished_as_the_room_turned(tiny_weights, floor, degr
     want = synth.generate(upright.room, seed=7).scene.moved(frame_yaw, (3.0, -2.0))
     got = synth.generate(turned.room, seed=7).scene
     assert len(got.objects) == len(want.objects) > 0
-    for a, b in zip(got.objects, want.objects):
+    for a, b in zip(got.objects, want.objects, strict=True):
         assert (a.id, a.category, a.model_id, a.support) == (b.id, b.category, b.model_id,
                                                                b.support)
         assert np.allclose(a.position, b.position, atol=1e-6)

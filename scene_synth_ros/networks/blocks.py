@@ -1,6 +1,8 @@
 """ResNet building blocks, written here (no torchvision): the encoders of all four modules."""
 from __future__ import annotations
 
+import itertools
+
 import torch
 from torch import nn
 
@@ -43,7 +45,7 @@ class ResNetEncoder(nn.Module):
             self.downsampling *= 2
         self.stem = nn.Sequential(*stem)
         stages, cin = [], w0
-        for k, (n, w) in enumerate(zip(cfg.blocks, cfg.widths)):
+        for k, (n, w) in enumerate(zip(cfg.blocks, cfg.widths, strict=True)):
             stride = 1 if k == 0 else 2
             if k:
                 self.downsampling *= 2
@@ -105,7 +107,7 @@ class UpBlock(nn.Module):
 def mlp(sizes: list[int], dropout: float = 0.0) -> nn.Sequential:
     """Linear layers with ReLU between them (none after the last)."""
     layers: list[nn.Module] = []
-    for k, (a, b) in enumerate(zip(sizes, sizes[1:])):
+    for k, (a, b) in enumerate(itertools.pairwise(sizes)):
         layers.append(nn.Linear(a, b))
         if k < len(sizes) - 2:
             layers.append(nn.ReLU(inplace=True))

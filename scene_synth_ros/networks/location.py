@@ -63,7 +63,7 @@ class LocationModel(nn.Module):
             x = self.drop_mid(feats[-1])
         else:
             feats, x = [], self.drop_mid(self.encoder(image))
-        for layer, k in zip(self.decoder, self.skip_at):
+        for layer, k in zip(self.decoder, self.skip_at, strict=True):
             x = layer(x, feats[k] if k is not None else None)
         return self.final(self.drop_out(x))
 
