@@ -12,7 +12,6 @@ alone, for the wall time per room, the time per module and the peak memory.
 """
 import argparse
 from collections import Counter
-import multiprocessing as mp
 import os
 from pathlib import Path
 import platform
@@ -29,6 +28,7 @@ from scene_synth_ros.corpus import HELDOUT_SEED  # noqa: E402
 from scene_synth_ros.corpus.generate import empty_room, generate_corpus  # noqa: E402
 from scene_synth_ros.corpus.stats import collect  # noqa: E402
 from scene_synth_ros.geometry import check_scene  # noqa: E402
+from scene_synth_ros.parallel import process_pool  # noqa: E402
 
 _SYNTH = None
 
@@ -54,11 +54,10 @@ def _synthesize(job):
 
 def quality(room_types, n, corpus_rooms, workers, weights):
     jobs = [(rt, i) for rt in room_types for i in range(n)]
-    ctx = mp.get_context('fork' if 'fork' in mp.get_all_start_methods() else 'spawn')
     out = {rt: {'counts': Counter(), 'objects': 0, 'violations': Counter(), 'stopped': Counter()}
            for rt in room_types}
     t0 = time.perf_counter()
-    with ctx.Pool(workers, _init_worker, (weights,)) as pool:
+    with process_pool(workers, _init_worker, (weights,)) as pool:
         for k, (rt, counts, nobj, viol, stopped) in enumerate(
                 pool.imap_unordered(_synthesize, jobs, chunksize=4)):
             o = out[rt]

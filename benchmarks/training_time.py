@@ -11,7 +11,7 @@ import argparse
 import json
 from pathlib import Path
 
-MODULES = ('category', 'location', 'orientation', 'snap', 'dimensions')
+from scene_synth_ros.networks import NETWORKS as MODULES
 
 
 def module_seconds(logs: list[Path]) -> dict[str, float]:

@@ -9,15 +9,16 @@ rotation to glTF's y-up convention.
 from __future__ import annotations
 
 from dataclasses import dataclass
+import itertools
 import math
 from pathlib import Path
-import re
 from xml.etree import ElementTree as ET
 
 import numpy as np
 import shapely
 import trimesh
 
+from .files import safe_name
 from .meshes import export_model, scene_mesh, variant_for
 from .scene import Room, Scene
 
@@ -52,7 +53,7 @@ def wall_boxes(room: Room, thickness: float = WALL_THICKNESS) -> list[WallBox]:
         # the floor to the ceiling except where an opening covers it.
         edges = sorted({0.0, wall.length} | {c[0] for c in cuts} | {c[1] for c in cuts})
         k = 0
-        for a, b in zip(edges, edges[1:]):
+        for a, b in itertools.pairwise(edges):
             if b - a < 1e-6:
                 continue
             mid = (a + b) / 2
@@ -131,10 +132,6 @@ def export_gltf(scene: Scene, path: str | Path) -> Path:
 
 
 # ---- SDF ----------------------------------------------------------------------------------
-def _model_name(text: str) -> str:
-    return re.sub(r'[^A-Za-z0-9_]', '_', text)
-
-
 def _pose(x, y, z, yaw=0.0) -> str:
     return f'{x:.6g} {y:.6g} {z:.6g} 0 0 {yaw:.6g}'
 
@@ -186,11 +183,11 @@ def export_sdf(scene: Scene, path: str | Path, mesh_dir: str | Path | None = Non
     written: set[str] = set()
     for obj in scene.objects:
         v = variant_for(obj)
-        fname = _model_name(v.model_id) + '.obj'
+        fname = safe_name(v.model_id) + '.obj'
         if fname not in written:
             export_model(v, mesh_dir / fname)
             written.add(fname)
-        model = _sub(world, 'model', name=_model_name(obj.id))
+        model = _sub(world, 'model', name=safe_name(obj.id))
         _sub(model, 'static', 'true')
         _sub(model, 'pose', _pose(*obj.position, obj.yaw))
         link = _sub(model, 'link', name='link')

@@ -7,7 +7,6 @@ and the plausibility metrics of the evaluation: one definition for all three.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-import math
 
 import numpy as np
 import shapely
@@ -69,7 +68,7 @@ def collisions(scene: Scene, tol: float = COLLISION_TOLERANCE) -> list[tuple[str
         return []
     tree = shapely.STRtree(shrunk)
     a, b = tree.query(shrunk, predicate='intersects')
-    return sorted({(objs[i].id, objs[j].id) for i, j in zip(a, b) if i < j})
+    return sorted({(objs[i].id, objs[j].id) for i, j in zip(a, b, strict=True) if i < j})
 
 
 def off_floor(scene: Scene, tol: float = FLOOR_TOLERANCE) -> list[str]:
@@ -166,9 +165,3 @@ class ValidityReport:
 def check_scene(scene: Scene) -> ValidityReport:
     return ValidityReport(collisions(scene), off_floor(scene), blocked_doors(scene),
                           under_supported(scene), doors_connected(scene))
-
-
-def yaw_difference(a: float, b: float) -> float:
-    """Smallest absolute angle between two yaws."""
-    d = (a - b) % (2 * math.pi)
-    return min(d, 2 * math.pi - d)

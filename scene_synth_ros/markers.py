@@ -8,13 +8,8 @@ Colours come from ``plot`` so that RViz and the top-down PNGs agree.
 from __future__ import annotations
 
 from dataclasses import dataclass
-import hashlib
 import math
-import os
 from pathlib import Path
-import re
-import shutil
-import tempfile
 import threading
 
 from matplotlib.colors import to_rgba
@@ -22,6 +17,7 @@ import shapely
 
 from . import plot
 from .export import WALL_THICKNESS, wall_boxes
+from .files import safe_name, writing_together
 from .meshes import export_model, variant_for
 from .scene import Opening, PlacedObject, Room, Scene
 
@@ -83,15 +79,6 @@ WINDOW_RGBA = _floats(to_rgba(plot.WINDOW_GLASS_COLOR, 0.4), 4, 'color')
 LABEL_RGBA = (1.0, 1.0, 1.0, 1.0)
 
 
-def _safe_name(model_id: str) -> str:
-    stem = re.sub(r'[^A-Za-z0-9_-]', '_', model_id)
-    if stem != model_id:
-        # Different ids can sanitise to the same stem ('a@1.5' and 'a_1_5'); a digest of the
-        # real id keeps their files apart.
-        stem += '_' + hashlib.sha1(model_id.encode()).hexdigest()[:8]
-    return stem
-
-
 class MeshCache:
     """Writes catalog meshes as OBJ (+.mtl) files on first use into a directory and returns
     file:// URIs."""
@@ -106,7 +93,7 @@ class MeshCache:
         variant = variant_for(obj)
         with self._lock:
             if variant.model_id not in self._uris:
-                path = self.directory / f'{_safe_name(variant.model_id)}.obj'
+                path = self.directory / f'{safe_name(variant.model_id)}.obj'
                 if not (path.exists() and path.with_suffix('.mtl').exists()):
                     self._write(variant, path)
                 self._uris[variant.model_id] = path.as_uri()
@@ -114,17 +101,10 @@ class MeshCache:
 
     @staticmethod
     def _write(variant, path: Path) -> None:
-        # The OBJ names its .mtl by file name, so both are written under their final names
-        # in a private temporary directory and then moved in; the .mtl goes first so that
-        # a reader (another process sharing the directory) never sees an OBJ without it.
+        # The OBJ names its .mtl, so the .mtl goes in first.
         path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = Path(tempfile.mkdtemp(prefix='.tmp-', dir=path.parent))
-        try:
+        with writing_together(path.parent, [path.with_suffix('.mtl').name, path.name]) as tmp:
             export_model(variant, tmp / path.name)
-            os.replace(tmp / path.with_suffix('.mtl').name, path.with_suffix('.mtl'))
-            os.replace(tmp / path.name, path)
-        finally:
-            shutil.rmtree(tmp, ignore_errors=True)
 
 
 def _floor_marker(room: Room) -> MarkerSpec:

@@ -16,33 +16,33 @@ import signal
 import sys
 import threading
 
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
+from geometry_msgs.msg import Point, PolygonStamped, Pose, PoseArray
+from rcl_interfaces.msg import (
+    FloatingPointRange,
+    IntegerRange,
+    ParameterDescriptor,
+    SetParametersResult,
+)
 import rclpy
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
 from rclpy.exceptions import InvalidParameterTypeException, InvalidParameterValueException
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
-from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
-from rcl_interfaces.msg import (FloatingPointRange, IntegerRange, ParameterDescriptor,
-                                SetParametersResult)
-from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
-from geometry_msgs.msg import Point, Pose, PoseArray, PolygonStamped
 from std_msgs.msg import ColorRGBA, String
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker, MarkerArray
 
 from .errors import SceneSynthError
 from .markers import MeshCache, scene_markers
+from .ros_client import LATCHED, RELIABLE
 from .server import PARAMETERS, ConfigError, SceneServer, Served, ServerConfig, Status
 
 NODE_NAME = 'scene_synth_node'
 EXIT_STARTUP_FAILED = 1
 
-# A late `ros2 topic echo` or RViz still gets the last room.
-LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
-                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
-INPUT = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
 _KINDS = {'cube': Marker.CUBE, 'mesh': Marker.MESH_RESOURCE, 'text': Marker.TEXT_VIEW_FACING,
           'triangle_list': Marker.TRIANGLE_LIST}
 
@@ -100,10 +100,10 @@ class SceneSynthNode(Node):
         self.markers_pub = self.create_publisher(MarkerArray, '~/markers', LATCHED)
         self.poses_pub = self.create_publisher(PoseArray, '~/poses', LATCHED)
         self.scene_pub = self.create_publisher(String, '~/scene', LATCHED)
-        self.diag_pub = self.create_publisher(DiagnosticArray, '/diagnostics', 10)
-        self.create_subscription(String, '~/room_layout', self._on_layout, INPUT,
+        self.diag_pub = self.create_publisher(DiagnosticArray, '/diagnostics', RELIABLE)
+        self.create_subscription(String, '~/room_layout', self._on_layout, RELIABLE,
                                  callback_group=inputs)
-        self.create_subscription(PolygonStamped, '~/room_polygon', self._on_polygon, INPUT,
+        self.create_subscription(PolygonStamped, '~/room_polygon', self._on_polygon, RELIABLE,
                                  callback_group=inputs)
         for kind in ('next_object', 'generate', 'reset'):
             self.create_service(Trigger, f'~/{kind}', self._service(kind),

@@ -469,7 +469,7 @@ class TopDownRenderer:
 
         m = frame.metres_per_pixel
         fyaw = frame.yaw
-        for o, ch in zip(objs, chans):
+        for o, ch in zip(objs, chans, strict=True):
             cx, cy = _to_px(frame, o.position[0], o.position[1])
             theta = o.yaw - fyaw
             win = _box_window(n, cx, cy, theta, o.size[1] / (2.0 * m), o.size[0] / (2.0 * m))

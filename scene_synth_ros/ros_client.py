@@ -14,6 +14,8 @@ import sys
 import time
 from typing import Any
 
+from diagnostic_msgs.msg import DiagnosticArray
+from geometry_msgs.msg import Point32, PolygonStamped, PoseArray
 import rclpy
 from rclpy.context import Context
 from rclpy.executors import SingleThreadedExecutor
@@ -21,8 +23,6 @@ from rclpy.parameter import Parameter
 from rclpy.parameter_client import AsyncParameterClient
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
-from diagnostic_msgs.msg import DiagnosticArray
-from geometry_msgs.msg import Point32, PolygonStamped, PoseArray
 from std_msgs.msg import String
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import MarkerArray
@@ -30,8 +30,13 @@ from visualization_msgs.msg import MarkerArray
 from .errors import SceneSynthError
 
 DEFAULT_NODE = '/scene_synth_node'
+
+# The QoS of the node's topics, defined here for both ends (node.py imports them, and this
+# module, unlike node.py, loads without the library behind the node).
+# The room outputs: a late `ros2 topic echo` or RViz still gets the last room.
 LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
+# Room layouts in and diagnostics out: none may be lost.
 RELIABLE = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
 TOPICS = {'scene': String, 'markers': MarkerArray, 'poses': PoseArray}
 
@@ -106,10 +111,6 @@ class SceneSynthClient:
         return (all(c.service_is_ready() for c in self._services.values())
                 and self._layout_pub.get_subscription_count() > 0
                 and self._polygon_pub.get_subscription_count() > 0)
-
-    def wait_for_node(self, timeout: float = 60.0) -> None:
-        """Wait until the node's services and subscriptions are there."""
-        self.spin_until(self.ready, timeout, 'services')
 
     def count(self, topic: str) -> int:
         """How many messages arrived on ``topic`` so far."""
@@ -205,14 +206,15 @@ class SceneSynthClient:
         self.spin_until(future.done, timeout, 'parameters')
         values = future.result().values
         return {n: Parameter.from_parameter_msg(_named(n, v)).value
-                for n, v in zip(names, values)}
+                for n, v in zip(names, values, strict=False)}
 
     def set_parameters(self, values: dict[str, Any], timeout: float = 30.0) -> list[str]:
         """Set parameters; returns the reasons of those the node refused (empty if none)."""
         self.spin_until(lambda: self._params.services_are_ready(), timeout, 'parameter services')
         future = self._params.set_parameters([Parameter(k, value=v) for k, v in values.items()])
         self.spin_until(future.done, timeout, 'parameter result')
-        return [f'{name}: {r.reason}' for name, r in zip(values, future.result().results)
+        return [f'{name}: {r.reason}' for name, r in zip(values, future.result().results,
+                                                             strict=False)
                 if not r.successful]
 
 

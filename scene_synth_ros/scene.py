@@ -90,7 +90,8 @@ def ccw(points: Iterable[Iterable[float]]) -> tuple[tuple[float, float], ...]:
     pts = [(float(x), float(y)) for x, y in points]
     if len(pts) > 1 and pts[0] == pts[-1]:
         pts = pts[:-1]
-    area2 = sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(pts, pts[1:] + pts[:1]))
+    area2 = sum(x0 * y1 - x1 * y0
+                for (x0, y0), (x1, y1) in zip(pts, pts[1:] + pts[:1], strict=True))
     return tuple(pts if area2 >= 0 else pts[::-1])
 
 
@@ -173,13 +174,22 @@ class Room:
                    tuple(Opening.from_dict('window', o) for o in d.get('windows', [])))
 
 
+def wrap_angle(yaw: float) -> float:
+    """``yaw`` as the equal angle in [-pi, pi]."""
+    return math.remainder(yaw, 2 * math.pi)
+
+
+def rotation(yaw: float) -> np.ndarray:
+    """The 2x2 matrix turning (x, y) by ``yaw`` about +z (counter-clockwise from above)."""
+    c, s = math.cos(yaw), math.sin(yaw)
+    return np.array([[c, -s], [s, c]])
+
+
 def box_corners(cx: float, cy: float, yaw: float, width: float, depth: float) -> np.ndarray:
     """Footprint corners (4x2, counter-clockwise) of a box of the package's size convention."""
-    c, s = math.cos(yaw), math.sin(yaw)
     hx, hy = depth / 2.0, width / 2.0
     local = np.array([[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]])
-    rot = np.array([[c, -s], [s, c]])
-    return local @ rot.T + np.array([cx, cy])
+    return local @ rotation(yaw).T + np.array([cx, cy])
 
 
 class Sized:
@@ -306,17 +316,17 @@ class Scene:
     def moved(self, yaw: float, offset: Iterable[float] = (0.0, 0.0)) -> 'Scene':
         """The scene under a rigid motion: turned by ``yaw`` about the origin, then shifted by
         ``offset`` (x, y). Heights, sizes, supports and ``meta`` are kept."""
-        c, s = math.cos(yaw), math.sin(yaw)
-        ox, oy = (float(v) for v in offset)
+        turn, shift = rotation(yaw), np.array([float(v) for v in offset])
 
         def move(p) -> tuple[float, float]:
-            return (c * p[0] - s * p[1] + ox, s * p[0] + c * p[1] + oy)
+            x, y = turn @ np.asarray(p[:2], dtype=float) + shift
+            return (float(x), float(y))
 
         room = self.room
         room = Room(room.room_type, tuple(move(p) for p in room.floor), room.wall_height,
                     tuple(replace(o, position=move(o.position)) for o in room.doors),
                     tuple(replace(o, position=move(o.position)) for o in room.windows))
         objects = [replace(o, position=(*move(o.position), o.position[2]),
-                           yaw=math.remainder(o.yaw + yaw, 2 * math.pi))
+                           yaw=wrap_angle(o.yaw + yaw))
                    for o in self.objects]
         return Scene(room, objects, dict(self.meta))

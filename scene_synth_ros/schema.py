@@ -34,8 +34,9 @@ import numpy as np
 import shapely
 
 from . import catalog
-from .categories import CATEGORIES, ROOM_TYPES, resolve_room_type, room_spec
+from .categories import CATEGORIES, ROOM_TYPES, RoomTypeSpec, resolve_room_type, room_spec
 from .errors import SceneSynthError, UnknownRoomType, number, with_article
+from .files import write_atomic
 from .paths import schema_dir
 from .render import RoomDoesNotFit, room_frame_box
 from .scene import Opening, PlacedObject, Room, Scene, ccw
@@ -386,83 +387,16 @@ def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str) -> list
     spec = room_spec(room.room_type)
     seen: dict[str, int] = {}
     for i, d in enumerate(items):
-        path = _join(prefix, i)
-        category = d['category']
-        cpath = _join(path, 'category')
-        if category not in CATEGORIES:
-            raise SceneValidationError(
-                f'{cpath} {category!r} is not a known category', cpath)
-        if category not in spec:
-            raise SceneValidationError(
-                f'{cpath} {category!r} is not a category of {with_article(room.room_type)} '
-                f'({with_article(room.room_type)} may hold: {", ".join(spec.names)})', cpath)
-        info = CATEGORIES[category]
-        w, dep, h = (float(v) for v in d['size'])
-        if not info.size_is_plausible(w, dep, h, SIZE_SLACK):
-            spath = _join(path, 'size')
-            bad = [f'{label} {number(v)} m is outside {_range(*rng)}'
-                   for label, v, rng in (('width', w, info.width), ('depth', dep, info.depth),
-                                         ('height', h, info.height))
-                   if not rng[0] * (1 - SIZE_SLACK) <= v <= rng[1] * (1 + SIZE_SLACK)]
-            raise SceneValidationError(
-                f'{spath} is not plausible for {with_article(category)}: {"; ".join(bad)}', spath)
-        x, y, z = (float(v) for v in d['position'])
-        if z < -FLOOR_TOLERANCE:
-            zpath = _join(_join(path, 'position'), 2)
-            raise SceneValidationError(
-                f'{zpath} is {number(z)} m, below the floor (z is the bottom of the object)',
-                zpath)
-        outside = room.polygon.distance(shapely.Point(x, y))
-        if outside > FLOOR_TOLERANCE:
-            ppath = _join(path, 'position')
-            raise SceneValidationError(
-                f'{ppath} is outside the floor: the centre ({number(x)}, {number(y)}) is '
-                f'{number(outside)} m outside the room', ppath)
-        if d.get('model_id') is not None:
-            mpath = _join(path, 'model_id')
-            try:
-                model = catalog.get(d['model_id'])
-            except KeyError:
-                raise SceneValidationError(
-                    f'{mpath} {d["model_id"]!r} is not a catalog model id', mpath) from None
-            if model.category != category:
-                raise SceneValidationError(
-                    f'{mpath} {d["model_id"]!r} is {with_article(model.category)} model, not '
-                    f'{with_article(category)}', mpath)
+        _check_object(d, _join(prefix, i), room, spec)
         if d.get('id') is not None:
-            ipath = _join(path, 'id')
+            ipath = _join(_join(prefix, i), 'id')
             if d['id'] in seen:
                 raise SceneValidationError(
                     f'{ipath} {d["id"]!r} is already the id of {_join(prefix, seen[d["id"]])}',
                     ipath)
             seen[d['id']] = i
-
-    for i, d in enumerate(items):
-        path = _join(prefix, i)
-        spath = _join(path, 'support')
-        category = d['category']
-        support = d.get('support')
-        if CATEGORIES[category].tier == 'first':
-            if support is not None:
-                raise SceneValidationError(
-                    f'{spath} must be absent because {with_article(category)} stands on the floor (first '
-                    f'tier), got {support!r}', spath)
-            continue
-        parents = spec.supports(category)
-        if support is None:
-            raise SceneValidationError(
-                f'{spath} is required because {with_article(category)} stands on another object (one of '
-                f'{", ".join(parents)})', spath)
-        if support not in seen:
-            raise SceneValidationError(
-                f'{spath} {support!r} is not the id of any object in the scene', spath)
-        if seen[support] == i:
-            raise SceneValidationError(f'{spath} names the object itself', spath)
-        parent_category = items[seen[support]]['category']
-        if parent_category not in parents:
-            raise SceneValidationError(
-                f'{spath} {support!r} is {with_article(parent_category)}, which cannot hold '
-                f'{with_article(category)} in {with_article(room.room_type)} (allowed: {", ".join(parents)})', spath)
+    for i in range(len(items)):
+        _check_support(items, i, seen, _join(_join(prefix, i), 'support'), room, spec)
 
     objects: list[PlacedObject] = []
     for d in _fill_ids(items, room):
@@ -474,6 +408,82 @@ def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str) -> list
                                     tuple(float(v) for v in d['position']), float(d['yaw']),
                                     size, d.get('support')))
     return objects
+
+
+def _check_object(d: dict[str, Any], path: str, room: Room, spec: RoomTypeSpec) -> None:
+    """One object dict's category, size, position and model id against the room."""
+    category = d['category']
+    cpath = _join(path, 'category')
+    if category not in CATEGORIES:
+        raise SceneValidationError(
+            f'{cpath} {category!r} is not a known category', cpath)
+    if category not in spec:
+        raise SceneValidationError(
+            f'{cpath} {category!r} is not a category of {with_article(room.room_type)} '
+            f'({with_article(room.room_type)} may hold: {", ".join(spec.names)})', cpath)
+    info = CATEGORIES[category]
+    w, dep, h = (float(v) for v in d['size'])
+    if not info.size_is_plausible(w, dep, h, SIZE_SLACK):
+        spath = _join(path, 'size')
+        bad = [f'{label} {number(v)} m is outside {_range(*rng)}'
+               for label, v, rng in (('width', w, info.width), ('depth', dep, info.depth),
+                                     ('height', h, info.height))
+               if not rng[0] * (1 - SIZE_SLACK) <= v <= rng[1] * (1 + SIZE_SLACK)]
+        raise SceneValidationError(
+            f'{spath} is not plausible for {with_article(category)}: {"; ".join(bad)}', spath)
+    x, y, z = (float(v) for v in d['position'])
+    if z < -FLOOR_TOLERANCE:
+        zpath = _join(_join(path, 'position'), 2)
+        raise SceneValidationError(
+            f'{zpath} is {number(z)} m, below the floor (z is the bottom of the object)',
+            zpath)
+    outside = room.polygon.distance(shapely.Point(x, y))
+    if outside > FLOOR_TOLERANCE:
+        ppath = _join(path, 'position')
+        raise SceneValidationError(
+            f'{ppath} is outside the floor: the centre ({number(x)}, {number(y)}) is '
+            f'{number(outside)} m outside the room', ppath)
+    if d.get('model_id') is not None:
+        mpath = _join(path, 'model_id')
+        try:
+            model = catalog.get(d['model_id'])
+        except KeyError:
+            raise SceneValidationError(
+                f'{mpath} {d["model_id"]!r} is not a catalog model id', mpath) from None
+        if model.category != category:
+            raise SceneValidationError(
+                f'{mpath} {d["model_id"]!r} is {with_article(model.category)} model, not '
+                f'{with_article(category)}', mpath)
+
+
+def _check_support(items: list[dict[str, Any]], i: int, seen: dict[str, int], spath: str,
+                   room: Room, spec: RoomTypeSpec) -> None:
+    """Object ``i`` has a support iff it is second tier, and the support (``seen``: id ->
+    index) is another object that can hold it."""
+    category = items[i]['category']
+    support = items[i].get('support')
+    if CATEGORIES[category].tier == 'first':
+        if support is not None:
+            raise SceneValidationError(
+                f'{spath} must be absent because {with_article(category)} stands on the '
+                f'floor (first tier), got {support!r}', spath)
+        return
+    parents = spec.supports(category)
+    if support is None:
+        raise SceneValidationError(
+            f'{spath} is required because {with_article(category)} stands on another '
+            f'object (one of {", ".join(parents)})', spath)
+    if support not in seen:
+        raise SceneValidationError(
+            f'{spath} {support!r} is not the id of any object in the scene', spath)
+    if seen[support] == i:
+        raise SceneValidationError(f'{spath} names the object itself', spath)
+    parent_category = items[seen[support]]['category']
+    if parent_category not in parents:
+        raise SceneValidationError(
+            f'{spath} {support!r} is {with_article(parent_category)}, which cannot hold '
+            f'{with_article(category)} in {with_article(room.room_type)} '
+            f'(allowed: {", ".join(parents)})', spath)
 
 
 def _fill_ids(items: list[dict[str, Any]], room: Room) -> list[dict[str, Any]]:
@@ -584,12 +594,3 @@ def save_scene(scene: Scene, path: str | os.PathLike) -> None:
     """Validate ``scene`` and write it as JSON to ``path`` (via a temporary file, so a failed
     write never leaves a half-written scene behind)."""
     write_atomic(path, dump_scene(scene) + '\n')
-
-
-def write_atomic(path: str | os.PathLike, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file beside it, so a reader (or a
-    failed write) never sees half a file."""
-    path = Path(path)
-    tmp = path.with_name(path.name + '.tmp')
-    tmp.write_text(text, encoding='utf-8')
-    os.replace(tmp, path)

@@ -23,11 +23,12 @@ from typing import Any, Callable
 
 from .categories import ROOM_TYPES, resolve_room_type
 from .errors import SceneSynthError, UnknownRoomType
+from .files import write_atomic
 from .markers import MARKER_STYLES
 from .networks.config import resolve_device
 from .scene import PlacedObject, Scene
-from .schema import dump_scene, parse_room_layout, write_atomic
-from .synth import (MODULES, SynthConfig, Synthesizer, SynthesisCancelled, check_room_fits)
+from .schema import dump_scene, parse_room_layout
+from .synth import MODULES, SynthConfig, SynthesisCancelled, Synthesizer, check_room_fits
 
 OK, WARN, ERROR = 0, 1, 2               # the levels of diagnostic_msgs/DiagnosticStatus
 DEVICES = ('auto', 'cpu', 'cuda')
@@ -93,14 +94,22 @@ def check(name: str, value: Any) -> Any:
             raise ConfigError(f'{name} must be true or false, got {value!r}')
         return value
     if isinstance(default, (int, float)):
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise ConfigError(f'{name} must be a number, got {value!r}')
-        if isinstance(default, int) and not float(value).is_integer():
-            raise ConfigError(f'{name} must be an integer, got {value!r}')
-        if not math.isfinite(value) or not limits[0] <= value <= limits[1]:
-            raise ConfigError(f'{name} must be between {limits[0]} and {limits[1]}, '
-                              f'got {value!r}')
-        return type(default)(value)
+        return _check_number(name, value, default, limits)
+    return _check_text(name, value, limits)
+
+
+def _check_number(name: str, value: Any, default: int | float, limits) -> int | float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ConfigError(f'{name} must be a number, got {value!r}')
+    if isinstance(default, int) and not float(value).is_integer():
+        raise ConfigError(f'{name} must be an integer, got {value!r}')
+    if not math.isfinite(value) or not limits[0] <= value <= limits[1]:
+        raise ConfigError(f'{name} must be between {limits[0]} and {limits[1]}, '
+                          f'got {value!r}')
+    return type(default)(value)
+
+
+def _check_text(name: str, value: Any, limits) -> str:
     if not isinstance(value, str):
         raise ConfigError(f'{name} must be a string, got {value!r}')
     if name == 'room_type':

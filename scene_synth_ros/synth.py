@@ -1,44 +1,58 @@
-"""Scene synthesis with the four trained modules (paper, section 5).
+"""Scene synthesis with the four trained modules (the paper's Model section).
 
-One insertion: the category module draws the next category (or STOP); the location module
-gives a distribution over the room for it, masked to the floor (or, for a second-tier
-category, to the surfaces observed to support it) and tempered; at each drawn location the
-orientation module draws a facing (snapped to the room's axes when its classifier says so)
-and the dimensions module a footprint; the catalog model nearest that footprint is placed,
-preferring models that co-occur in the training rooms with those already there. A placement
-is rejected if it collides with first-tier furniture, leaves the floor, enters a door's clear
-zone, cuts the robot path between the doors, or (second tier) stands less than 70 % on its
-parent or overlaps its neighbours there; then the next model is tried, then the next
-location, and if nothing fits the category is drawn again without the failed ones.
+Objects are inserted one at a time, each in the paper's steps. Next Object Category: the
+category module draws the next category, or STOP. Object Location: the location module gives
+a distribution over the room for it, masked to the floor (or, for a second-tier category, to
+the surfaces observed to support it) and tempered, and locations are drawn from it. Object
+Orientation: at each location the orientation module draws a facing, snapped to the room's
+axes when its classifier says so. Object Dimensions: the dimensions module draws a
+footprint. Object Insertion: the catalog model nearest that footprint is placed, preferring
+models that co-occur in the training rooms with those already there. A placement is rejected
+if it collides with first-tier furniture, leaves the floor, enters a door's clear zone, cuts
+the robot path between the doors, or (second tier) stands less than 70 % on its parent or
+overlaps its neighbours there; then the next model is tried, then the next location, and if
+nothing fits the category is drawn again without the failed ones.
 
 Three modes: ``generate`` (an empty room), ``complete`` (a partial room: keeps what is
 there) and ``suggest`` (k distinct proposals for the next object, nothing committed). Each is
-reproducible from its seed.
+reproducible from its seed. ``Synthesis.timings`` has the seconds a room spent in each of
+``MODULES``: rendering images, each network (snap with orientation), and insertion.
 """
 from __future__ import annotations
 
+from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 import math
 from pathlib import Path
 import time
+from typing import Iterator
 
 import numpy as np
 import shapely
+from shapely.geometry import Polygon
 import torch
 
 from . import catalog
-from .categories import CATEGORIES, resolve_room_type, room_spec
+from .categories import CATEGORIES, RoomTypeSpec, resolve_room_type, room_spec
 from .errors import SceneSynthError
-from .geometry import (FLOOR_TOLERANCE, MIN_SUPPORT, door_zone, doors_connected, enters_zone,
-                       overlaps_any, support_fraction)
+from .geometry import (
+    FLOOR_TOLERANCE,
+    MIN_SUPPORT,
+    door_zone,
+    doors_connected,
+    enters_zone,
+    overlaps_any,
+    support_fraction,
+)
 from .networks.bundle import Bundle, bundle_path, load_bundle
-from .networks.config import resolve_device
 from .networks.category import category_probabilities
+from .networks.config import resolve_device
 from .networks.location import location_distribution, sample_pixel
 from .networks.orientation import decode_angle, snap_angle
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer
-from .scene import PlacedObject, Room, Scene, box_corners
+from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
 
+# What ``Synthesis.timings`` counts seconds of (see the module docstring).
 MODULES = ('render', 'category', 'location', 'orientation', 'dimensions', 'insertion')
 
 
@@ -142,18 +156,28 @@ class _Context:
     """Per-room state shared by the insertions into one room."""
 
     room: Room
-    spec: object
+    spec: RoomTypeSpec
     bundle: Bundle
-    frame: Frame
+    frame: Frame                  # the room's frame: what the category and location modules see
     grid: Frame                   # the location module's output grid
-    floor_mask: np.ndarray        # (L, L) pixel centres on the floor
-    door_mask: np.ndarray         # (L, L) pixel centres in a door's clear zone
-    floor: object                 # floor polygon grown by the floor tolerance
-    zones: list                   # door clear zones
+    floor_mask: np.ndarray        # (L, L) bool: pixel centres on the floor
+    door_mask: np.ndarray         # (L, L) bool: pixel centres in a door's clear zone
+    floor: Polygon                # the floor grown by the floor tolerance
+    zones: list[Polygon]          # the doors' clear zones
     rng: np.random.Generator
     gen: torch.Generator
-    timings: dict[str, float]
-    connected: dict = field(default_factory=dict)   # (scene id, object count) -> bool
+    timings: dict[str, float] = field(default_factory=lambda: dict.fromkeys(MODULES, 0.0))
+    # (id of the scene, its object count) -> whether its doors are connected
+    connected: dict[tuple[int, int], bool] = field(default_factory=dict)
+
+    @contextmanager
+    def timed(self, module: str) -> Iterator[None]:
+        """Adds the seconds the block takes to ``timings[module]``."""
+        t = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.timings[module] += time.perf_counter() - t
 
 
 class Synthesizer:
@@ -208,11 +232,12 @@ class Synthesizer:
         door_mask = np.zeros(n * n, dtype=bool)
         for z in zones:
             door_mask |= shapely.contains_xy(z, centres[:, 0], centres[:, 1])
-        gen = torch.Generator().manual_seed(int(seed) & 0x7FFF_FFFF_FFFF_FFFF)
-        return _Context(room, spec, bundle, frame, grid, floor_mask.reshape(n, n),
-                        door_mask.reshape(n, n),
-                        room.polygon.buffer(FLOOR_TOLERANCE, join_style='mitre'), zones,
-                        np.random.default_rng(seed), gen, {k: 0.0 for k in MODULES})
+        return _Context(
+            room=room, spec=spec, bundle=bundle, frame=frame, grid=grid,
+            floor_mask=floor_mask.reshape(n, n), door_mask=door_mask.reshape(n, n),
+            floor=room.polygon.buffer(FLOOR_TOLERANCE, join_style='mitre'), zones=zones,
+            rng=np.random.default_rng(seed),
+            gen=torch.Generator().manual_seed(int(seed) & 0x7FFF_FFFF_FFFF_FFFF))
 
     # ---- public modes ---------------------------------------------------------------------
     def generate(self, room: Room | Scene, seed: int = 0, cancel=None) -> Synthesis:
@@ -276,51 +301,102 @@ class Synthesizer:
                     found.append(obj)
         return found
 
-    # ---- one insertion --------------------------------------------------------------------
+    # ---- one insertion: the paper's pipeline ------------------------------------------------
     def _insert_one(self, ctx: _Context, scene: Scene, allow_stop: bool = True
                     ) -> tuple[PlacedObject | None, str]:
-        cfg, b, spec = self.config, ctx.bundle, ctx.spec
-        names = spec.names
-        t = time.perf_counter()
-        image = self._renderer(ctx.frame.resolution).render(scene, ctx.frame)
-        x = torch.from_numpy(image)[None].to(self.device)
-        if ctx.grid.resolution == ctx.frame.resolution:
-            small = image
-        else:
-            small = self._renderer(ctx.grid.resolution).render(scene, ctx.grid)
-        counts = torch.zeros(1, len(names), device=self.device)
-        for o in scene.objects:
-            if o.category in spec:
-                counts[0, spec.index(o.category)] += 1
-        ctx.timings['render'] += time.perf_counter() - t
-
-        t = time.perf_counter()
-        cat_logits = b.networks['category'](x, counts)[0]
-        ctx.timings['category'] += time.perf_counter() - t
-        loc_logits = None      # computed on the first category that is not STOP
-
-        present = {o.category for o in scene.objects}
-        allowed = torch.ones(len(names) + 1, dtype=torch.bool, device=self.device)
-        for k, name in enumerate(names):
-            if CATEGORIES[name].tier == 'second' and not set(spec.supports(name)) & present:
-                allowed[k] = False
-        allowed[-1] = allow_stop
-        for _ in range(cfg.category_attempts):
+        """One step of the sequential model: the next category (or STOP) drawn from the
+        category module, then an object of it; a category that no insertion fits is drawn
+        again without it (paper: Object Insertion). Returns the object, or None and why."""
+        with ctx.timed('render'):
+            image, small = self._top_down(ctx, scene)
+            counts = self._bag_of_categories(ctx, scene)
+        with ctx.timed('category'):
+            category_logits = ctx.bundle.networks['category'](image, counts)[0]
+        allowed = self._allowed_categories(ctx, scene, allow_stop)
+        location_logits = None      # computed for the first category that is not STOP
+        for _ in range(self.config.category_attempts):
             if not bool(allowed.any()):
                 break
-            p = category_probabilities(cat_logits, allowed).double().cpu().numpy()
-            c = int(ctx.rng.choice(len(p), p=p / p.sum()))
-            if c == len(names):
+            c = self._next_category(ctx, category_logits, allowed)
+            if c == len(ctx.spec.names):         # the index after the categories: STOP
                 return None, 'stop'
-            if loc_logits is None:
-                t = time.perf_counter()
-                loc_logits = b.networks['location'](x)[0]
-                ctx.timings['location'] += time.perf_counter() - t
-            obj = self._place(ctx, scene, names[c], c, loc_logits, small)
+            if location_logits is None:
+                with ctx.timed('location'):
+                    location_logits = ctx.bundle.networks['location'](image)[0]
+            obj = self._insert_category(ctx, scene, c, location_logits, small)
             if obj is not None:
                 return obj, 'placed'
             allowed[c] = False
         return None, 'nothing_fits'
+
+    def _top_down(self, ctx: _Context, scene: Scene) -> tuple[torch.Tensor, np.ndarray]:
+        """The scene image the category and location modules see (a batch of one), and the
+        scene on the location grid, for the location mask."""
+        image = self._renderer(ctx.frame.resolution).render(scene, ctx.frame)
+        if ctx.grid.resolution == ctx.frame.resolution:
+            small = image
+        else:
+            small = self._renderer(ctx.grid.resolution).render(scene, ctx.grid)
+        return torch.from_numpy(image)[None].to(self.device), small
+
+    def _bag_of_categories(self, ctx: _Context, scene: Scene) -> torch.Tensor:
+        """How many objects of each category the room holds (a batch of one)."""
+        spec = ctx.spec
+        counts = torch.zeros(1, len(spec.names), device=self.device)
+        for o in scene.objects:
+            if o.category in spec:
+                counts[0, spec.index(o.category)] += 1
+        return counts
+
+    def _allowed_categories(self, ctx: _Context, scene: Scene, allow_stop: bool
+                            ) -> torch.Tensor:
+        """Which of the categories and STOP (last) may come next: a second-tier category
+        only once the room holds something that can support it."""
+        spec = ctx.spec
+        present = {o.category for o in scene.objects}
+        allowed = torch.ones(len(spec.names) + 1, dtype=torch.bool, device=self.device)
+        for k, name in enumerate(spec.names):
+            if CATEGORIES[name].tier == 'second' and not set(spec.supports(name)) & present:
+                allowed[k] = False
+        allowed[-1] = allow_stop
+        return allowed
+
+    @staticmethod
+    def _next_category(ctx: _Context, logits: torch.Tensor, allowed: torch.Tensor) -> int:
+        """A draw from the category module's distribution over the ``allowed`` categories
+        (paper: Next Object Category)."""
+        p = category_probabilities(logits, allowed).double().cpu().numpy()
+        return int(ctx.rng.choice(len(p), p=p / p.sum()))
+
+    def _insert_category(self, ctx: _Context, scene: Scene, c: int,
+                         location_logits: torch.Tensor, small: np.ndarray
+                         ) -> PlacedObject | None:
+        """An object of category ``c``: locations drawn from the masked, tempered location
+        distribution (paper: Object Location), at each an orientation (Object Orientation)
+        and dimensions (Object Dimensions), then a catalog model that stands there (Object
+        Insertion). Locations are drawn ``location_batch`` at a time, so that the orientation
+        and dimensions modules see them as one batch."""
+        cfg = self.config
+        category = ctx.spec.names[c]
+        with ctx.timed('location'):
+            p = location_distribution(location_logits, c, self._mask(ctx, category, small),
+                                      cfg.location_temperature)
+        if p is None:
+            return None
+        tried = 0
+        while tried < cfg.location_samples:
+            n = min(cfg.location_batch, cfg.location_samples - tried)
+            tried += n
+            with ctx.timed('location'):
+                points = ctx.grid.pixel_to_world(sample_pixel(p, ctx.rng, n))
+            yaws = self._orientation(ctx, scene, c, points)
+            dims = self._dimensions(ctx, scene, c, points, yaws)
+            with ctx.timed('insertion'):
+                for point, yaw, (depth, width) in zip(points, yaws, dims, strict=True):
+                    obj = self._insert_model(ctx, scene, category, point, yaw, width, depth)
+                    if obj is not None:
+                        return obj
+        return None
 
     def _mask(self, ctx: _Context, category: str, small: np.ndarray) -> np.ndarray:
         """Where the centre of a new ``category`` object may go on the location grid."""
@@ -336,68 +412,42 @@ class Synthesizer:
                 mask &= small[FIRST_CATEGORY + spec.index(name)] < 0.5
         return mask & ctx.floor_mask
 
-    def _place(self, ctx: _Context, scene: Scene, category: str, c: int,
-               loc_logits: torch.Tensor, small: np.ndarray) -> PlacedObject | None:
-        cfg = self.config
-        t = time.perf_counter()
-        p = location_distribution(loc_logits, c, self._mask(ctx, category, small),
-                                  cfg.location_temperature)
-        ctx.timings['location'] += time.perf_counter() - t
-        if p is None:
-            return None
-        tried = 0
-        while tried < cfg.location_samples:
-            n = min(cfg.location_batch, cfg.location_samples - tried)
-            tried += n
-            t = time.perf_counter()
-            points = ctx.grid.pixel_to_world(sample_pixel(p, ctx.rng, n))
-            ctx.timings['location'] += time.perf_counter() - t
-            yaws = self._orientations(ctx, scene, c, points)
-            dims = self._dimensions(ctx, scene, c, points, yaws)
-            t = time.perf_counter()
-            for point, yaw, (depth, width) in zip(points, yaws, dims):
-                obj = self._fit_model(ctx, scene, category, point, yaw, width, depth)
-                if obj is not None:
-                    ctx.timings['insertion'] += time.perf_counter() - t
-                    return obj
-            ctx.timings['insertion'] += time.perf_counter() - t
-        return None
-
-    def _local_batch(self, ctx: _Context, scene: Scene, points, yaws) -> torch.Tensor:
+    def _local_images(self, ctx: _Context, scene: Scene, points: np.ndarray,
+                      yaws: list[float]) -> torch.Tensor:
+        """The scene image translated to each point and turned to each yaw, as a batch."""
         r = self._renderer(ctx.frame.resolution)
         images = [r.render(scene, Frame.local(ctx.room.room_type, pt, yaw, ctx.frame.resolution))
-                  for pt, yaw in zip(points, yaws)]
+                  for pt, yaw in zip(points, yaws, strict=True)]
         return torch.from_numpy(np.stack(images)).to(self.device)
 
-    def _orientations(self, ctx: _Context, scene: Scene, c: int, points) -> list[float]:
-        t = time.perf_counter()
-        x = self._local_batch(ctx, scene, points, [ctx.frame.yaw] * len(points))
-        ctx.timings['render'] += time.perf_counter() - t
-        t = time.perf_counter()
-        cats = torch.full((len(points),), c, dtype=torch.long, device=self.device)
-        theta = decode_angle(ctx.bundle.networks['orientation'].sample(x, cats, ctx.gen),
-                             ctx.gen)
-        snap = torch.sigmoid(ctx.bundle.networks['snap'](x, cats)) > self.config.snap_threshold
-        out = []
-        for th, s in zip(theta.tolist(), snap.tolist()):
-            th = snap_angle(th) if s else th
-            out.append(math.remainder(ctx.frame.yaw + th, 2 * math.pi))
-        ctx.timings['orientation'] += time.perf_counter() - t
-        return out
+    def _orientation(self, ctx: _Context, scene: Scene, c: int, points: np.ndarray
+                     ) -> list[float]:
+        """The yaw of a ``c`` object at each point: the orientation CVAE sees the image
+        translated to the point, in the room's axes, and the snap classifier says whether
+        its angle goes to the nearest of the room's four axes."""
+        with ctx.timed('render'):
+            x = self._local_images(ctx, scene, points, [ctx.frame.yaw] * len(points))
+        with ctx.timed('orientation'):
+            cats = torch.full((len(points),), c, dtype=torch.long, device=self.device)
+            nets = ctx.bundle.networks
+            theta = decode_angle(nets['orientation'].sample(x, cats, ctx.gen), ctx.gen)
+            snap = torch.sigmoid(nets['snap'](x, cats)) > self.config.snap_threshold
+            return [wrap_angle(ctx.frame.yaw + (snap_angle(th) if s else th))
+                    for th, s in zip(theta.tolist(), snap.tolist(), strict=True)]
 
-    def _dimensions(self, ctx: _Context, scene: Scene, c: int, points, yaws
-                    ) -> list[tuple[float, float]]:
-        t = time.perf_counter()
-        x = self._local_batch(ctx, scene, points, yaws)
-        ctx.timings['render'] += time.perf_counter() - t
-        t = time.perf_counter()
-        cats = torch.full((len(points),), c, dtype=torch.long, device=self.device)
-        log_dims = ctx.bundle.networks['dimensions'].sample(x, cats, ctx.gen)
-        dims = torch.exp(log_dims).cpu().tolist()
-        ctx.timings['dimensions'] += time.perf_counter() - t
+    def _dimensions(self, ctx: _Context, scene: Scene, c: int, points: np.ndarray,
+                    yaws: list[float]) -> list[tuple[float, float]]:
+        """The footprint (depth, width) of a ``c`` object at each point and yaw, from the
+        dimensions CVAE shown the image in the object's frame."""
+        with ctx.timed('render'):
+            x = self._local_images(ctx, scene, points, yaws)
+        with ctx.timed('dimensions'):
+            cats = torch.full((len(points),), c, dtype=torch.long, device=self.device)
+            log_dims = ctx.bundle.networks['dimensions'].sample(x, cats, ctx.gen)
+            dims = torch.exp(log_dims).cpu().tolist()
         return [(d[0], d[1]) for d in dims]
 
-    # ---- catalog retrieval and rejection ----------------------------------------------------
+    # ---- insertion: catalog retrieval and rejection -----------------------------------------
     def candidate_models(self, ctx: _Context, scene: Scene, category: str, width: float,
                          depth: float) -> list[catalog.ModelVariant]:
         """Catalog models from the best footprint fit; among those within ``fit_slack`` of
@@ -422,8 +472,11 @@ class Synthesizer:
             close = sorted(close, key=lambda v: -affinity(v))
         return close + rest
 
-    def _fit_model(self, ctx: _Context, scene: Scene, category: str, point, yaw: float,
-                   width: float, depth: float) -> PlacedObject | None:
+    def _insert_model(self, ctx: _Context, scene: Scene, category: str, point: np.ndarray,
+                      yaw: float, width: float, depth: float) -> PlacedObject | None:
+        """The first of the ``models_per_location`` catalog models nearest the predicted
+        footprint that stands at ``point`` facing ``yaw`` (pushed onto a wall it nearly
+        touches, if it stands there too), or None."""
         second = CATEGORIES[category].tier == 'second'
         parent = self._parent(ctx, scene, category, point) if second else None
         if second and parent is None:
@@ -443,7 +496,8 @@ class Synthesizer:
         return None
 
     @staticmethod
-    def _parent(ctx: _Context, scene: Scene, category: str, point) -> PlacedObject | None:
+    def _parent(ctx: _Context, scene: Scene, category: str, point: np.ndarray
+                ) -> PlacedObject | None:
         """The highest first-tier object of a supporting category under ``point``."""
         supports = set(ctx.spec.supports(category))
         pt = shapely.Point(float(point[0]), float(point[1]))
@@ -479,5 +533,5 @@ def _distinct(a: PlacedObject, b: PlacedObject) -> bool:
     if a.category != b.category:
         return True
     far = math.dist(a.position[:2], b.position[:2]) >= 0.5
-    turned = abs(math.remainder(a.yaw - b.yaw, 2 * math.pi)) > math.radians(30)
+    turned = abs(wrap_angle(a.yaw - b.yaw)) > math.radians(30)
     return far or turned

@@ -15,8 +15,13 @@ from shapely.geometry import Point
 
 from scene_synth_ros import catalog, plot
 from scene_synth_ros.export import WALL_THICKNESS, wall_boxes
-from scene_synth_ros.markers import (MARKER_STYLES, MarkerSpec, MeshCache, category_color,
-                                     scene_markers)
+from scene_synth_ros.markers import (
+    MARKER_STYLES,
+    MarkerSpec,
+    MeshCache,
+    category_color,
+    scene_markers,
+)
 from scene_synth_ros.paths import examples_dir
 from scene_synth_ros.scene import PlacedObject, Scene
 from scene_synth_ros.schema import load_scene
@@ -116,7 +121,7 @@ def test_object_ids_count_per_category_and_labels_per_object():
     assert len(set(keys)) == len(keys)
     labels = groups['labels']
     assert [m.id for m in labels] == list(range(len(scene.objects)))
-    for m, obj in zip(labels, scene.objects):
+    for m, obj in zip(labels, scene.objects, strict=True):
         assert m.kind == 'text'
         assert m.text == obj.id
         assert m.position == pytest.approx((obj.position[0], obj.position[1], obj.top + 0.15))
@@ -176,7 +181,7 @@ def test_wall_cubes_are_the_export_wall_boxes(make):
     walls = by_ns(scene_markers(make()))['walls']
     assert len(walls) == len(boxes)
     assert [m.id for m in walls] == list(range(len(boxes)))
-    for m, b in zip(walls, boxes):
+    for m, b in zip(walls, boxes, strict=True):
         assert m.kind == 'cube'
         assert m.position == pytest.approx(b.centre)
         assert m.yaw == pytest.approx(b.yaw)
@@ -189,7 +194,7 @@ def test_door_and_window_cubes_fill_their_openings_on_their_walls(make):
     groups = by_ns(scene_markers(make()))
     for ns, openings in (('doors', room.doors), ('windows', room.windows)):
         assert len(groups[ns]) == len(openings)
-        for m, op in zip(groups[ns], openings):
+        for m, op in zip(groups[ns], openings, strict=True):
             wall = room.wall_of(op)
             assert m.kind == 'cube'
             # centred in the wall's thickness, which stands outside the floor outline
@@ -213,7 +218,7 @@ def test_object_cubes_match_the_objects():
     scene = rich_bedroom()
     markers = [m for m in scene_markers(scene, 'cube') if m.ns not in ROOM_NS + ('labels',)]
     assert len(markers) == len(scene.objects)
-    for m, obj in zip(markers, scene.objects):
+    for m, obj in zip(markers, scene.objects, strict=True):
         assert m.ns == obj.category and m.kind == 'cube'
         assert m.yaw == pytest.approx(obj.yaw)
         assert m.scale == pytest.approx((obj.depth, obj.width, obj.height))
@@ -249,7 +254,7 @@ def test_mesh_style_writes_obj_files_and_points_at_them(tmp_path):
     markers = [m for m in scene_markers(scene, 'mesh', cache)
                if m.ns not in ROOM_NS + ('labels',)]
     assert len(markers) == len(scene.objects)
-    for m, obj in zip(markers, scene.objects):
+    for m, obj in zip(markers, scene.objects, strict=True):
         assert m.kind == 'mesh' and m.ns == obj.category
         assert m.position == pytest.approx(obj.position)         # the base, not the centre
         assert m.yaw == pytest.approx(obj.yaw)

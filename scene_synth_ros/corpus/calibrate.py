@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+import tempfile
 
 from ..categories import ROOM_TYPES, room_spec
+from ..files import write_atomic
 from .generate import CALIBRATION_FILE, generate_corpus, load_calibration
 from .stats import collect
 
@@ -24,27 +26,30 @@ def calibrate(rooms: int = 2000, iterations: int = 3, seed: int = 12345,
     """Fit the factors and write them to ``out``. Uses a seed of its own so that the rooms
     it fits on are not the rooms of the default corpus (seed 0)."""
     factors = {rt: {c.name: 1.0 for c in room_spec(rt).categories} for rt in room_types}
-    tmp = Path(out).with_suffix('.tmp.json')
-    for it in range(iterations):
-        for rt in room_types:
-            _write(tmp, factors, rooms, iterations, seed)
-            load_calibration.cache_clear()
-            stats = collect(rt, generate_corpus(rt, rooms, seed=seed + it, workers=workers,
-                                                calibration_path=str(tmp)), check=False)
-            for name, here, table in stats.category_table():
-                ratio = table / here if here > 0 else MAX_FACTOR
-                factors[rt][name] = min(max(factors[rt][name] * ratio, MIN_FACTOR), MAX_FACTOR)
-            log(f'calibration pass {it + 1}/{iterations} {rt}: KL(corpus||table) = '
-                f'{stats.kl_to_table:.4f}, objects/room {stats.objects_per_room:.2f} '
-                f'(table {room_spec(rt).mean_objects_per_room:.2f})')
-    tmp.unlink(missing_ok=True)
+    with tempfile.TemporaryDirectory() as scratch:
+        # The factors of the pass under way, where the corpus workers read them.
+        current = Path(scratch) / 'calibration.json'
+        for it in range(iterations):
+            for rt in room_types:
+                _write(current, factors, rooms, iterations, seed)
+                load_calibration.cache_clear()
+                corpus = generate_corpus(rt, rooms, seed=seed + it, workers=workers,
+                                         calibration_path=str(current))
+                stats = collect(rt, corpus, check=False)
+                for name, here, table in stats.category_table():
+                    ratio = table / here if here > 0 else MAX_FACTOR
+                    factors[rt][name] = min(max(factors[rt][name] * ratio, MIN_FACTOR),
+                                            MAX_FACTOR)
+                log(f'calibration pass {it + 1}/{iterations} {rt}: KL(corpus||table) = '
+                    f'{stats.kl_to_table:.4f}, objects/room {stats.objects_per_room:.2f} '
+                    f'(table {room_spec(rt).mean_objects_per_room:.2f})')
     _write(Path(out), factors, rooms, iterations, seed)
     load_calibration.cache_clear()
     return factors
 
 
 def _write(path: Path, factors, rooms, iterations, seed) -> None:
-    path.write_text(json.dumps({
+    write_atomic(path, json.dumps({
         'about': 'request-rate factors of the procedural corpus; made by '
                  f'`scene-synth corpus-calibrate --rooms {rooms} --iterations {iterations} '
                  f'--seed {seed}`',

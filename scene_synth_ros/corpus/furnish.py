@@ -58,7 +58,6 @@ PARENT_WEIGHT = {
 }
 ONE_PER_PARENT = {'television', 'console', 'laptop', 'table lamp', 'fishbowl', 'fruit bowl'}
 SYMMETRIC = {'plant', 'vase', 'cup', 'glass', 'bottle', 'fruit bowl', 'fishbowl', 'toy'}
-SEATS = ('office chair', 'straight chair', 'chair', 'stool')
 SEATED_BY = ('desk', 'dressing table', 'piano')
 
 
@@ -123,8 +122,7 @@ def _first(*attempts):
 
 
 def _unseated(lay: Layout, categories) -> list[PlacedObject]:
-    seated = lay.scene.meta.setdefault('_seated', set())
-    return [o for o in lay.first_tier(*categories) if o.id not in seated]
+    return [o for o in lay.first_tier(*categories) if o.id not in lay.seated]
 
 
 def _seat_at(lay: Layout, v: ModelVariant, anchors, distance=(0.02, 0.2),
@@ -133,7 +131,7 @@ def _seat_at(lay: Layout, v: ModelVariant, anchors, distance=(0.02, 0.2),
         lateral = lay.rng.uniform(-0.15, 0.15) * anchor.width
         obj = lay.facing(anchor, v, lay.rng.uniform(*distance), lateral, yaw_jitter=jitter)
         if obj is not None:
-            lay.scene.meta['_seated'].add(anchor.id)
+            lay.seated.add(anchor.id)
             return obj
     return None
 

@@ -4,7 +4,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import lru_cache
 import json
-import multiprocessing as mp
 import os
 from pathlib import Path
 from typing import Iterator
@@ -13,6 +12,7 @@ import numpy as np
 
 from ..categories import CATEGORIES, ROOM_TYPES, resolve_room_type
 from ..geometry import check_scene
+from ..parallel import process_pool
 from ..scene import Room, Scene
 from .furnish import draw_plan, pick_variant, place_first_tier, place_second_tier
 from .layout import Layout
@@ -58,11 +58,11 @@ def generate_room(room_type: str, seed: int = 0, index: int = 0,
         rng = np.random.default_rng(ss)
         plan = draw_plan(room_type, rng, calibration)
         chosen = [pick_variant(c, rng) for c in plan]
-        footprint = sum(v.width * v.depth for c, v in zip(plan, chosen)
+        footprint = sum(v.width * v.depth for c, v in zip(plan, chosen, strict=True)
                         if CATEGORIES[c].tier == 'first')
         room = sample_shell(room_type, rng, min_area=CIRCULATION * footprint + 2.0)
         lay = Layout(room, rng, {'generator': 'procedural', 'seed': seed, 'index': index})
-        items = list(zip(plan, chosen))
+        items = list(zip(plan, chosen, strict=True))
         first = [(c, v) for c, v in items if CATEGORIES[c].tier == 'first']
         # Big things go on a surface first, as a person would put the TV before the vase.
         second = sorted(((c, v) for c, v in items if CATEGORIES[c].tier == 'second'),
@@ -72,7 +72,6 @@ def generate_room(room_type: str, seed: int = 0, index: int = 0,
         for category, variant in second:
             place_second_tier(lay, category, variant)
         scene = lay.scene
-        scene.meta.pop('_seated', None)
         if attempt:
             scene.meta['attempt'] = attempt
         if check_scene(scene).ok:
@@ -96,8 +95,7 @@ def generate_corpus(room_type: str, n: int, seed: int = 0, workers: int | None =
     if workers <= 1 or n < 8:
         yield from map(_work, reqs)
         return
-    ctx = mp.get_context('fork' if 'fork' in mp.get_all_start_methods() else 'spawn')
-    with ctx.Pool(workers) as pool:
+    with process_pool(workers) as pool:
         yield from pool.imap(_work, reqs, chunksize=16)
 
 

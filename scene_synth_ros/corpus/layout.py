@@ -10,19 +10,18 @@ from shapely.geometry import LineString, Polygon
 from shapely.prepared import prep
 
 from ..catalog import ModelVariant
-from ..geometry import (MIN_SUPPORT, door_zone, doors_connected, shrunk_footprint,
-                        support_fraction)
-from ..scene import PlacedObject, Room, Scene, Wall
+from ..geometry import MIN_SUPPORT, door_zone, doors_connected, shrunk_footprint, support_fraction
+from ..scene import PlacedObject, Room, Scene, Wall, rotation
 
 TOUCH = 0.002           # footprints may touch: 2 mm of numerical slack
 
 
-def _rot(yaw: float) -> np.ndarray:
-    c, s = math.cos(yaw), math.sin(yaw)
-    return np.array([[c, -s], [s, c]])
+def wrap_half_open(yaw: float) -> float:
+    """``yaw`` in [-pi, pi), the corpus's convention.
 
-
-def wrap(yaw: float) -> float:
+    Not ``scene.wrap_angle``: rounding through ``yaw + pi`` this differs from it in the last
+    bits (and maps pi to -pi), so using that would change every corpus room, and with them
+    the training data of the shipped weights."""
     return (yaw + math.pi) % (2 * math.pi) - math.pi
 
 
@@ -42,6 +41,7 @@ class Layout:
             b = np.asarray(w.position) + wall.direction * w.width / 2
             self._windows.append((LineString([a, b]), w.sill))
         self._first: list[tuple[PlacedObject, Polygon]] = []
+        self.seated: set[str] = set()     # ids of the desks, tables, pianos given a seat
 
     # ---- the rules --------------------------------------------------------------------
     def fits(self, obj: PlacedObject) -> bool:
@@ -88,7 +88,7 @@ class Layout:
              support: str | None = None) -> PlacedObject:
         return PlacedObject(self.scene.new_id(variant.category), variant.category,
                             variant.model_id, (float(xy[0]), float(xy[1]), float(z)),
-                            wrap(yaw), variant.size, support)
+                            wrap_half_open(yaw), variant.size, support)
 
     def try_place(self, variant: ModelVariant, xy, yaw: float) -> PlacedObject | None:
         obj = self.make(variant, xy, yaw)
@@ -130,7 +130,7 @@ class Layout:
     def relative(self, anchor: PlacedObject, variant: ModelVariant, local_xy,
                  yaw_offset: float = 0.0) -> PlacedObject | None:
         """Place at ``local_xy`` in the anchor's frame, turned by ``yaw_offset`` from it."""
-        xy = np.asarray(anchor.position[:2]) + _rot(anchor.yaw) @ np.asarray(local_xy, float)
+        xy = np.asarray(anchor.position[:2]) + rotation(anchor.yaw) @ np.asarray(local_xy, float)
         return self.try_place(variant, xy, anchor.yaw + yaw_offset)
 
     def beside(self, anchor: PlacedObject, variant: ModelVariant, side: int,
@@ -261,7 +261,7 @@ class Layout:
         siblings = [c.footprint() for c in self.scene.children_of(parent.id)]
         for _ in range(tries):
             local = (self.rng.uniform(-hx, hx), self.rng.uniform(-hy, hy))
-            xy = np.asarray(parent.position[:2]) + _rot(parent.yaw) @ np.asarray(local)
+            xy = np.asarray(parent.position[:2]) + rotation(parent.yaw) @ np.asarray(local)
             yaw = parent.yaw + (self.rng.uniform(-math.pi, math.pi) if free_yaw
                                 else self.rng.normal(0, 0.05))
             obj = self.make(variant, xy, yaw, z=parent.top, support=parent.id)

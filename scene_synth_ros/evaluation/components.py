@@ -3,7 +3,7 @@ shipped weights, as stored in their bundles at export, against a randomly initia
 network of the same shape. Nothing is retrained or re-evaluated here."""
 from __future__ import annotations
 
-from ..networks.train import COMPONENT_ROWS
+from ..networks import COMPONENT_ROWS
 from .paper import COMPONENT_IMPROVEMENT
 
 HIGHER_IS_BETTER = {'top1', 'top5', 'accuracy'}
@@ -18,7 +18,7 @@ def improvement(key: str, trained: float, random: float) -> float:
 
 
 def component_rows(room_type: str, components: dict) -> list[dict]:
-    """One row per metric of ``networks.train.COMPONENT_ROWS``, from a bundle's
+    """One row per metric of ``networks.COMPONENT_ROWS``, from a bundle's
     ``metrics['components']``."""
     rows = []
     for label, module, key in COMPONENT_ROWS:

@@ -3,6 +3,7 @@
 They were measured on SUNCG with the paper's networks and hardware, so they are a point of
 reference, not a target our procedural corpus can be held to number for number.
 """
+from ..networks import COMPONENT_ROWS
 
 # Table 1: KL(synthesized || training set) of the category distribution.
 KL = {
@@ -22,13 +23,11 @@ SPEED = {'ours': (1.858, 'NVIDIA GeForce GTX 1080 Ti'),
          'grains': (0.1027, 'GPU')}
 
 # Appendix table: improvement of each module over a randomly initialised network on
-# held-out data, keyed by (module, metric) as in ``models.train.COMPONENT_ROWS``
+# held-out data, keyed by (module, metric), one value per row of ``networks.COMPONENT_ROWS``
 # (accuracies: absolute difference; losses: relative change in percent).
-_COMPONENT_KEYS = (('category', 'top1'), ('category', 'top5'), ('location', 'loss'),
-                   ('orientation', 'neg_elbo'), ('snap', 'accuracy'),
-                   ('dimensions', 'neg_elbo'))
 COMPONENT_IMPROVEMENT = {
-    rt: dict(zip(_COMPONENT_KEYS, values)) for rt, values in {
+    rt: dict(zip(((module, key) for _, module, key in COMPONENT_ROWS), values, strict=True))
+    for rt, values in {
         'bedroom': (0.4225, 0.7600, -98.61, -54.20, 0.3821, -97.74),
         'living': (0.5312, 0.8001, -98.56, -44.99, 0.3902, -97.79),
         'office': (0.5525, 0.7629, -98.25, -68.03, 0.4482, -98.14),

@@ -2,10 +2,11 @@
 worker. Every job carries its own seed, so results do not depend on the number of workers."""
 from __future__ import annotations
 
-import multiprocessing as mp
 from typing import Callable, Iterable, Sequence
 
 from tqdm import tqdm
+
+from ..parallel import process_pool
 
 
 def _single_thread_torch() -> None:
@@ -29,6 +30,5 @@ def pmap(fn: Callable, items: Sequence, workers: int = 1, initializer: Callable 
     if workers <= 1 or len(items) < 2:
         _init(initializer, tuple(initargs))
         return list(tqdm(map(fn, items), **bar))
-    ctx = mp.get_context('fork' if 'fork' in mp.get_all_start_methods() else 'spawn')
-    with ctx.Pool(min(workers, len(items)), _init, (initializer, tuple(initargs))) as pool:
+    with process_pool(min(workers, len(items)), _init, (initializer, tuple(initargs))) as pool:
         return list(tqdm(pool.imap(fn, items, chunksize), **bar))

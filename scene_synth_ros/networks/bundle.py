@@ -17,7 +17,9 @@ from torch import nn
 
 from ..categories import resolve_room_type, room_spec
 from ..errors import SceneSynthError
+from ..files import writing_together
 from ..render import num_channels
+from . import NETWORKS
 from .category import CategoryModel
 from .config import ModelConfig, PipelineConfig
 from .dimensions import DimensionsModel
@@ -25,7 +27,6 @@ from .location import LocationModel
 from .orientation import OrientationModel, SnapModel
 
 FORMAT = 1
-NETWORKS = ('category', 'location', 'orientation', 'snap', 'dimensions')
 
 
 class BundleError(SceneSynthError):
@@ -75,9 +76,8 @@ def save_bundle(bundle: Bundle, path: str | Path) -> None:
                       for k, v in bundle.networks[name].state_dict().items()}
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_suffix('.tmp')
-    torch.save(data, tmp)
-    tmp.replace(path)
+    with writing_together(path.parent, [path.name]) as tmp:
+        torch.save(data, tmp / path.name)
 
 
 def load_bundle(path: str | Path, device: str | torch.device = 'cpu') -> Bundle:

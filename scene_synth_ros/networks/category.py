@@ -20,10 +20,6 @@ class CategoryModel(nn.Module):
         self.head = mlp([self.encoder.out_features + cfg.count_features, cfg.hidden,
                          num_categories + 1], dropout=0.2)
 
-    @property
-    def stop_index(self) -> int:
-        return self.num_categories
-
     def forward(self, image: torch.Tensor, counts: torch.Tensor) -> torch.Tensor:
         feats = torch.cat([self.encoder(image), torch.relu(self.counts(counts))], dim=1)
         return self.head(feats)

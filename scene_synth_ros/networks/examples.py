@@ -17,10 +17,9 @@ import torch
 
 from ..categories import ROOM_SIZE_CAP, resolve_room_type, room_spec
 from ..render import Frame, TopDownRenderer
-from ..scene import Opening, PlacedObject, Room, Scene
+from ..scene import Opening, PlacedObject, Room, Scene, wrap_angle
+from . import NETWORKS
 from .orientation import is_snapped
-
-MODULES = ('category', 'location', 'orientation', 'snap', 'dimensions')
 
 
 # ---- augmentation -------------------------------------------------------------------------
@@ -52,7 +51,7 @@ def rotate_scene(scene: Scene, k: int) -> Scene:
     objs = []
     for o in scene.objects:
         x, y = _turn(o.position, centre, k)
-        yaw = math.remainder(o.yaw + k * math.pi / 2, 2 * math.pi)
+        yaw = wrap_angle(o.yaw + k * math.pi / 2)
         objs.append(replace(o, position=(x, y, o.position[2]), yaw=yaw))
     return Scene(room, objs, dict(scene.meta))
 
@@ -69,10 +68,10 @@ def insertion_order(scene: Scene, rng: np.random.Generator, by_importance: bool
         objs = list(tier)
         noise = rng.random(len(objs))
         if by_importance:
-            keys = [(rank[o.category], r) for o, r in zip(objs, noise)]
+            keys = [(rank[o.category], r) for o, r in zip(objs, noise, strict=True)]
         else:
             keys = [(r,) for r in noise]
-        out += [o for _, o in sorted(zip(keys, objs), key=lambda t: t[0])]
+        out += [o for _, o in sorted(zip(keys, objs, strict=True), key=lambda t: t[0])]
     return out
 
 
@@ -168,7 +167,7 @@ class ExampleSource:
         frame = Frame.for_room(part.room, self.resolution)
         image = self.renderer.render(part, Frame.local(self.room_type, obj.position, frame.yaw,
                                                        self.resolution))
-        theta = math.remainder(obj.yaw - frame.yaw, 2 * math.pi)
+        theta = wrap_angle(obj.yaw - frame.yaw)
         return image, self.index[obj.category], theta
 
     def dimensions_example(self, rng):
@@ -198,7 +197,7 @@ class ExampleSource:
             return {'image': _stack(e[0] for e in ex),
                     'category': torch.tensor([e[1] for e in ex]),
                     'target': torch.tensor([e[2] for e in ex], dtype=torch.float32)}
-        raise ValueError(f'unknown module {module!r}; expected one of {", ".join(MODULES)}')
+        raise ValueError(f'unknown module {module!r}; expected one of {", ".join(NETWORKS)}')
 
 
 def _stack(arrays) -> torch.Tensor:

@@ -20,8 +20,10 @@ from torch import nn
 from ..catalog import variants
 from ..categories import ROOM_TYPES, resolve_room_type, room_spec
 from ..corpus.generate import generate_corpus
+from ..files import writing_together
 from ..scene import Scene
-from .bundle import NETWORKS, Bundle, build_networks, save_bundle
+from . import COMPONENT_ROWS, NETWORKS
+from .bundle import Bundle, build_networks, save_bundle
 from .config import ModuleSchedule, PipelineConfig, resolve_device
 from .dimensions import Discriminator, box_sdf, dimensions_elbo
 from .examples import ExampleSource
@@ -159,9 +161,8 @@ def train_module(module: str, net: nn.Module, source: ExampleSource, val: Exampl
         state = {'net': net.state_dict(), 'opt': opt.state_dict(), 'step': step}
         if disc is not None:
             state.update(disc=disc.state_dict(), disc_opt=disc_opt.state_dict())
-        tmp = ckpt.with_suffix('.tmp')
-        torch.save(state, tmp)
-        tmp.replace(ckpt)
+        with writing_together(run_dir, [ckpt.name]) as tmp:
+            torch.save(state, tmp / ckpt.name)
 
     bar = tqdm(range(start, sched.steps), initial=start, total=sched.steps,
                desc=f'{source.room_type}/{module}', unit='step', disable=not progress,
@@ -290,14 +291,6 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
     echo(format_components({rt: table}))
     echo(f'{rt}: weights written to {out}')
     return bundle
-
-
-COMPONENT_ROWS = [('category top-1 accuracy', 'category', 'top1'),
-                  ('category top-5 accuracy', 'category', 'top5'),
-                  ('location cross-entropy', 'location', 'loss'),
-                  ('orientation neg. ELBO', 'orientation', 'neg_elbo'),
-                  ('snap accuracy', 'snap', 'accuracy'),
-                  ('dimensions neg. ELBO', 'dimensions', 'neg_elbo')]
 
 
 def format_components(tables: dict[str, dict[str, dict[str, float]]],

@@ -1,0 +1,49 @@
+"""Files the package writes: whole or not at all, under names that cannot collide.
+
+Every file is first written under a private temporary directory beside its destination and
+then renamed into place, so a reader (another process sharing the directory, the node
+watching its export folder) never sees half a file, and a failed write leaves the old file
+as it was. A rename within one directory is atomic on POSIX and on Windows (``os.replace``).
+"""
+from __future__ import annotations
+
+from contextlib import contextmanager
+import os
+from pathlib import Path
+import re
+import shutil
+import tempfile
+from typing import Iterator, Sequence
+
+
+@contextmanager
+def writing_together(directory: str | os.PathLike, names: Sequence[str]) -> Iterator[Path]:
+    """A private temporary directory in which to write the files ``names`` under their final
+    names; when the block ends without an error they are moved into ``directory`` in the
+    order given, and on an error none of them is.
+
+    For files that refer to each other by name (an OBJ and its MTL): list the one referred to
+    first, so that a reader never finds a file whose companion is not there yet."""
+    directory = Path(directory)
+    tmp = Path(tempfile.mkdtemp(prefix='.tmp-', dir=directory))
+    try:
+        yield tmp
+        for name in names:
+            os.replace(tmp / name, directory / name)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def write_atomic(path: str | os.PathLike, data: str | bytes) -> None:
+    """Write ``data`` (text as UTF-8) to ``path`` whole or not at all."""
+    path = Path(path)
+    with writing_together(path.parent, [path.name]) as tmp:
+        (tmp / path.name).write_bytes(data.encode('utf-8') if isinstance(data, str) else data)
+
+
+def safe_name(text: str) -> str:
+    """``text`` as a file or SDF model name: letters, digits and ``_`` stay, every other
+    character becomes ``-<hex code>-`` (``a@1.5`` gives ``a-40-1-2e-5``), so the usual ids
+    are their own names, and different texts never share a name (``-`` occurs only in these
+    escapes, so a name decodes back to exactly one text)."""
+    return re.sub(r'[^A-Za-z0-9_]', lambda m: f'-{ord(m.group()):x}-', text)
