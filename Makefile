@@ -1,7 +1,7 @@
 # Two set-up commands, each working on a fresh clone of a fresh machine:
 #   make demo   install into .venv, start scene_synth_node, furnish an example room through
 #               it, ask it for one more object in a partial room, stop it
-#   make test   install into .venv, then run the test suite
+#   make test   install into .venv, lint the tree, then run the whole test suite
 SHELL := /bin/bash
 .SHELLFLAGS := -eo pipefail -c
 PYTHON ?= python3
@@ -25,7 +25,8 @@ $(STAMP): requirements.txt setup.py setup.cfg package.xml
 demo: install
 	$(VENV)/bin/scene-synth ros demo --out demo_out
 
-test: install
+# The whole suite, after the linter.
+test: lint
 	$(PY) -m pytest -q
 
 # The lane for people working on the code: everything but the tests marked slow (< 1 min).
