@@ -130,6 +130,7 @@ def test_plausibility_metrics_see_collisions_and_objects_off_the_floor(bedrooms)
 
 
 # ---- classifier -------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_classifier_learns_perfectly_separable_inputs():
     threads = torch.get_num_threads()
     torch.set_num_threads(1)
@@ -178,6 +179,7 @@ def test_eval_config_defaults_are_the_paper_sizes_and_bad_sizes_are_refused(tmp_
 
 
 # ---- the whole run ----------------------------------------------------------------------------
+@pytest.mark.slow
 def test_quick_report_of_one_room_type_is_written_with_finite_numbers(cli, tmp_path):
     out = tmp_path / 'report'
     results = run_evaluation(['bathroom'], EvalConfig.quick(seed=2), out, workers=1,

@@ -241,6 +241,7 @@ def test_box_sdf_sign_and_gradient():
 
 
 # ---- training and bundles ----------------------------------------------------------------------
+@pytest.mark.slow
 def test_training_resumes_exactly(tmp_path):
     from scene_synth_ros.networks.train import ExampleSource as _ES
     from scene_synth_ros.networks.train import load_corpus, train_module

@@ -39,11 +39,18 @@ def test_core_library_does_not_import_rclpy():
     subprocess.run([sys.executable, '-c', code], check=True, timeout=120)
 
 
-def test_wheel_installs_the_ament_data_files(tmp_path):
+@pytest.fixture(scope='module')
+def wheel(tmp_path_factory) -> Path:
+    """The package's wheel, built once for the tests below."""
+    out = tmp_path_factory.mktemp('wheels')
     subprocess.run([sys.executable, '-m', 'pip', 'wheel', '-q', '--no-deps',
-                    '--no-build-isolation', '-w', str(tmp_path), str(ROOT)],
+                    '--no-build-isolation', '-w', str(out), str(ROOT)],
                    check=True, timeout=300, capture_output=True)
-    wheel = next(tmp_path.glob('scene_synth_ros-*.whl'))
+    return next(out.glob('scene_synth_ros-*.whl'))
+
+
+@pytest.mark.slow
+def test_wheel_installs_the_ament_data_files(wheel):
     names = zipfile.ZipFile(wheel).namelist()
     data = 'scene_synth_ros-0.1.0.data/data/'
     assert data + 'share/ament_index/resource_index/packages/scene_synth_ros' in names
@@ -87,16 +94,11 @@ def test_every_directory_of_modules_is_a_package():
 
 
 @pytest.mark.slow
-def test_the_wheel_works_installed_outside_the_source_tree(tmp_path):
-    """Build the wheel, install it (not editable) into a fresh virtual environment and use it
-    from a directory outside the checkout, as a user of `pip install .` or of a plain
-    `colcon build` would. The fresh environment borrows this one's pinned dependencies
-    through a path entry, which does not run the editable install's import hook."""
-    wheels = tmp_path / 'wheels'
-    subprocess.run([sys.executable, '-m', 'pip', 'wheel', '-q', '--no-deps',
-                    '--no-build-isolation', '-w', str(wheels), str(ROOT)],
-                   check=True, timeout=300, capture_output=True)
-    wheel = next(wheels.glob('scene_synth_ros-*.whl'))
+def test_the_wheel_works_installed_outside_the_source_tree(wheel, tmp_path):
+    """Install the wheel (not editable) into a fresh virtual environment and use it from a
+    directory outside the checkout, as a user of `pip install .` or of a plain `colcon build`
+    would. The fresh environment borrows this one's pinned dependencies through a path
+    entry, which does not run the editable install's import hook."""
     in_wheel = {'.'.join(Path(n).parent.parts) for n in zipfile.ZipFile(wheel).namelist()
                 if n.endswith('/__init__.py')}
     assert _source_packages() <= in_wheel, sorted(_source_packages() - in_wheel)

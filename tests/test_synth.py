@@ -231,6 +231,7 @@ def test_against_walls_closes_sub_pixel_gaps_only():
         assert against_walls(room, obj, 0.15, rng) is obj
 
 
+@pytest.mark.slow
 def test_synthesized_furniture_stands_against_walls_like_the_corpus():
     synth = Synthesizer()          # the shipped weights
     # The corpus puts wall furniture 0-2 cm from the wall and almost nothing 2-15 cm from
