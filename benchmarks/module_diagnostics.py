@@ -22,24 +22,24 @@ from scene_synth_ros.networks.examples import ExampleSource  # noqa: E402
 from scene_synth_ros.networks.orientation import decode_angle  # noqa: E402
 from scene_synth_ros.synth import Synthesizer  # noqa: E402
 
-HELD_OUT_SEED = 5
+DIAGNOSTIC_SEED = 5   # corpus rooms neither training (0) nor the evaluation (1) uses
 
 
 def diagnose(synth: Synthesizer, rt: str, rooms: int) -> None:
     b = synth.bundle(rt)
     m = b.config.model
-    src = ExampleSource(rt, list(generate_corpus(rt, rooms, seed=HELD_OUT_SEED)),
+    src = ExampleSource(rt, list(generate_corpus(rt, rooms, seed=DIAGNOSTIC_SEED)),
                         m.resolution, m.location_resolution)
     with torch.inference_mode():
-        cat = src.batch('category', [HELD_OUT_SEED, 0], 1024)
+        cat = src.batch('category', [DIAGNOSTIC_SEED, 0], 1024)
         p_stop = torch.softmax(b.networks['category'](cat['image'], cat['counts']), -1)[:, -1]
         stop = (cat['target'] == src.num_categories).float()
         present = cat['counts'].sum(1)
-        ori = src.batch('orientation', [HELD_OUT_SEED, 1], 512)
+        ori = src.batch('orientation', [DIAGNOSTIC_SEED, 1], 512)
         out = b.networks['orientation'].sample(ori['image'], ori['category'],
                                                torch.Generator().manual_seed(0))
         theta = decode_angle(out, torch.Generator().manual_seed(1))
-        dim = src.batch('dimensions', [HELD_OUT_SEED, 2], 512)
+        dim = src.batch('dimensions', [DIAGNOSTIC_SEED, 2], 512)
         log_dims = b.networks['dimensions'].sample(dim['image'], dim['category'],
                                                    torch.Generator().manual_seed(0))
     err = (torch.remainder(theta - ori['theta'] + math.pi, 2 * math.pi) - math.pi).abs()

@@ -10,8 +10,12 @@ runs that share the cores with others are slower than alone.
 import argparse
 import json
 from pathlib import Path
+import sys
 
-from scene_synth_ros.networks import NETWORKS as MODULES
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from scene_synth_ros.networks import NETWORKS as MODULES  # noqa: E402
 
 
 def module_seconds(logs: list[Path]) -> dict[str, float]:

@@ -16,6 +16,10 @@ class UnknownRoomType(SceneSynthError, ValueError):
     """A room type that is not one of ``categories.ROOM_TYPES`` (nor an alias of one)."""
 
 
+class UnknownCategory(SceneSynthError, ValueError):
+    """A category name that is not one of ``categories.CATEGORIES``."""
+
+
 # The wording of numbers and nouns inside those sentences, shared by every module that
 # writes them.
 def number(x: float) -> str:

@@ -1,9 +1,11 @@
-"""Files the package writes: whole or not at all, under names that cannot collide.
+"""Writing files whole or not at all, under names that cannot collide.
 
-Every file is first written under a private temporary directory beside its destination and
-then renamed into place, so a reader (another process sharing the directory, the node
-watching its export folder) never sees half a file, and a failed write leaves the old file
-as it was. A rename within one directory is atomic on POSIX and on Windows (``os.replace``).
+The files others read while they may be changing (scenes, the node's exports, the mesh cache
+RViz loads, weight bundles, training checkpoints, the corpus calibration) go through
+``write_atomic``/``writing_together``: written under a private temporary directory beside
+their destination, then renamed into place, so a reader never sees half a file and a failed
+write leaves the old file as it was. A rename within one directory is atomic on POSIX and on
+Windows (``os.replace``).
 """
 from __future__ import annotations
 
@@ -20,7 +22,7 @@ from typing import Iterator, Sequence
 def writing_together(directory: str | os.PathLike, names: Sequence[str]) -> Iterator[Path]:
     """A private temporary directory in which to write the files ``names`` under their final
     names; when the block ends without an error they are moved into ``directory`` in the
-    order given, and on an error none of them is.
+    order given (each move atomic), and an error in the block moves none of them.
 
     For files that refer to each other by name (an OBJ and its MTL): list the one referred to
     first, so that a reader never finds a file whose companion is not there yet."""

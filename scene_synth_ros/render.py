@@ -140,13 +140,12 @@ def room_frame_box(room: Room) -> RoomFrameBox:
     """The room measured in its frame's axes (see the module docstring)."""
     rt = resolve_room_type(room.room_type)
     yaw = room_axis_yaw(room)
-    c, s = math.cos(yaw), math.sin(yaw)      # exactly 1 and 0 for an axis-aligned room
-    x, y = np.asarray(room.floor, dtype=float).T
-    u, v = x * c + y * s, -x * s + y * c
-    cu, cv = (u.min() + u.max()) / 2.0, (v.min() + v.max()) / 2.0
-    centre = (float(cu * c - cv * s), float(cu * s + cv * c))
-    return RoomFrameBox(rt, yaw, centre,
-                        (float(u.max() - u.min()), float(v.max() - v.min())), ROOM_SIZE_CAP[rt])
+    axes = Frame((0.0, 0.0), yaw, ROOM_SIZE_CAP[rt], 1)     # the room's axes through the origin
+    uv = axes.to_local(np.asarray(room.floor, dtype=float))
+    lo, hi = uv.min(axis=0), uv.max(axis=0)
+    centre = axes.to_world((lo + hi) / 2.0)
+    return RoomFrameBox(rt, yaw, (float(centre[0]), float(centre[1])),
+                        (float(hi[0] - lo[0]), float(hi[1] - lo[1])), ROOM_SIZE_CAP[rt])
 
 
 class RoomDoesNotFit(SceneSynthError, ValueError):

@@ -12,6 +12,7 @@ import trimesh
 
 from scene_synth_ros import catalog, meshes
 from scene_synth_ros.categories import CATEGORIES
+from scene_synth_ros.errors import UnknownCategory
 from scene_synth_ros.scene import PlacedObject, Room, Scene, box_corners
 
 TOL = 1e-3   # metres
@@ -269,7 +270,7 @@ def test_export_catalog_and_mesh_path(tmp_path):
     assert paths == expected
     assert all(p.exists() and p.name.endswith('.glb') for p in paths)
     assert meshes.mesh_path('cup_03', tmp_path, 'obj') == tmp_path / 'cup_03.obj'
-    with pytest.raises(KeyError):
+    with pytest.raises(UnknownCategory, match="unknown category 'spaceship'"):
         meshes.export_catalog(tmp_path, categories=['spaceship'])
 
 

@@ -64,6 +64,14 @@ def test_bad_input_gets_one_sentence_and_exit_code_2(tmp_path):
     assert unknown.returncode == 2 and 'kitchen' in unknown.stderr
 
 
+def test_an_unknown_catalog_category_is_one_sentence(cli, tmp_path):
+    run = cli('catalog', 'export', '--categories', 'cup,spaceship', '--out', tmp_path, ok=False)
+    assert run.returncode == 2
+    assert run.stderr == ("scene-synth: unknown category 'spaceship'; `scene-synth catalog "
+                          "list` shows the catalog\n")
+    assert not list(tmp_path.iterdir())     # nothing written before the check
+
+
 def test_validate_accepts_the_examples(cli):
     out = cli('validate', *sorted(EXAMPLES.glob('*.json'))).stdout
     assert out.count('schema OK') == len(list(EXAMPLES.glob('*.json')))

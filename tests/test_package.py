@@ -2,6 +2,7 @@
 import json
 import os
 from pathlib import Path
+import shutil
 import subprocess
 import sys
 import venv
@@ -39,12 +40,22 @@ def test_core_library_does_not_import_rclpy():
     subprocess.run([sys.executable, '-c', code], check=True, timeout=120)
 
 
+# What a checkout accumulates that is not source: setuptools would pack a stale build/lib
+# (modules since deleted) into the wheel, and the rest is large and irrelevant.
+NOT_SOURCE = shutil.ignore_patterns('.git', '.venv', 'build', 'dist', 'install', 'log', 'logs',
+                                    'out', 'runs', 'report', 'demo_out', '*.egg-info',
+                                    '__pycache__', '.pytest_cache', '.ruff_cache')
+
+
 @pytest.fixture(scope='module')
 def wheel(tmp_path_factory) -> Path:
-    """The package's wheel, built once for the tests below."""
+    """The package's wheel, built once for the tests below from a clean copy of the sources,
+    as on a fresh clone."""
+    src = tmp_path_factory.mktemp('src') / 'scene_synth_ros'
+    shutil.copytree(ROOT, src, ignore=NOT_SOURCE)
     out = tmp_path_factory.mktemp('wheels')
     subprocess.run([sys.executable, '-m', 'pip', 'wheel', '-q', '--no-deps',
-                    '--no-build-isolation', '-w', str(out), str(ROOT)],
+                    '--no-build-isolation', '-w', str(out), str(src)],
                    check=True, timeout=300, capture_output=True)
     return next(out.glob('scene_synth_ros-*.whl'))
 
@@ -78,6 +89,13 @@ def test_resource_marker_and_setup_cfg_script_dir():
     assert 'install_scripts=$base/lib/scene_synth_ros' in cfg
 
 
+def _source_modules() -> set[str]:
+    """Every Python file of the package, as its path inside a wheel."""
+    pkg = ROOT / 'scene_synth_ros'
+    return {p.relative_to(ROOT).as_posix() for p in pkg.rglob('*.py')
+            if '__pycache__' not in p.parts}
+
+
 def _source_packages() -> set[str]:
     """Every directory of Python modules under scene_synth_ros/, as a dotted package name."""
     pkg = ROOT / 'scene_synth_ros'
@@ -99,9 +117,9 @@ def test_the_wheel_works_installed_outside_the_source_tree(wheel, tmp_path):
     directory outside the checkout, as a user of `pip install .` or of a plain `colcon build`
     would. The fresh environment borrows this one's pinned dependencies through a path
     entry, which does not run the editable install's import hook."""
-    in_wheel = {'.'.join(Path(n).parent.parts) for n in zipfile.ZipFile(wheel).namelist()
-                if n.endswith('/__init__.py')}
-    assert _source_packages() <= in_wheel, sorted(_source_packages() - in_wheel)
+    in_wheel = {n for n in zipfile.ZipFile(wheel).namelist() if n.endswith('.py')}
+    # Every module of the sources and nothing else (no stale module from an old build).
+    assert in_wheel == _source_modules(), sorted(in_wheel ^ _source_modules())
 
     env_dir = tmp_path / 'fresh'
     venv.create(env_dir, with_pip=False)

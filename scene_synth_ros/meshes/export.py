@@ -18,6 +18,7 @@ import trimesh
 from .. import catalog
 from ..catalog import ModelVariant
 from ..categories import CATEGORIES
+from ..errors import UnknownCategory
 from .builder import Part
 from .materials import MATERIALS, Material
 from .registry import build_parts
@@ -121,7 +122,8 @@ def export_catalog(out_dir: str | Path, fmt: str = 'glb',
     cats = list(CATEGORIES) if categories is None else list(categories)
     for c in cats:
         if c not in CATEGORIES:
-            raise KeyError(f'unknown category {c!r}')
+            raise UnknownCategory(f'unknown category {c!r}; `scene-synth catalog list` shows '
+                                  f'the catalog')
     out = []
     for c in cats:
         for v in catalog.variants(c):

@@ -45,7 +45,9 @@ class ResNetEncoder(nn.Module):
             self.downsampling *= 2
         self.stem = nn.Sequential(*stem)
         stages, cin = [], w0
-        for k, (n, w) in enumerate(zip(cfg.blocks, cfg.widths, strict=True)):
+        # A configuration may list more widths than stages (one width list serves encoders
+        # of several depths); the stages take the first ones.
+        for k, (n, w) in enumerate(zip(cfg.blocks, cfg.widths, strict=False)):
             stride = 1 if k == 0 else 2
             if k:
                 self.downsampling *= 2
