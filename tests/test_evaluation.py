@@ -11,7 +11,13 @@ import torch
 
 from scene_synth_ros.corpus.generate import generate_corpus
 from scene_synth_ros.errors import UnknownRoomType
-from scene_synth_ros.evaluation import classifier, components, distribution, plausibility
+from scene_synth_ros.evaluation import (
+    classifier,
+    components,
+    design_rules,
+    distribution,
+    plausibility,
+)
 from scene_synth_ros.evaluation import similarity as sim
 from scene_synth_ros.evaluation.perturb import perturb_all, perturb_scene
 from scene_synth_ros.evaluation.run import (
@@ -187,7 +193,7 @@ def test_quick_report_of_one_room_type_is_written_with_finite_numbers(cli, tmp_p
     index = (out / 'index.md').read_text()
     for heading in ('## Summary', 'Category distribution', 'Real vs synthetic classifier',
                     'Speed', 'Physical plausibility', 'Generalisation', 'Component metrics',
-                    'Gallery'):
+                    'Design rules', 'Gallery'):
         assert heading in index
     for name in ('categories', 'similarity', 'gallery'):
         png = out / f'{name}_bathroom.png'
@@ -202,6 +208,12 @@ def test_quick_report_of_one_room_type_is_written_with_finite_numbers(cli, tmp_p
     assert r['similarity']['references'] == 32
     assert 0 <= r['classifier']['synthesized']['accuracy'] <= 1
     assert '**bathroom**: category KL' in index               # the plain-words reading
+    rules = r['design_rules']
+    assert set(rules) == {rule.name for rule in design_rules.rules()}
+    assert rules['fixture_clearance']['corpus'][1] > 0 or rules['bath_in_corner']['corpus'][1] > 0
+    for d in rules.values():
+        for side in ('corpus', 'synthesized'):
+            assert 0 <= d[side][0] <= d[side][1]
 
     # The report again from results.json alone, plus a copy elsewhere linking to out/.
     (out / 'index.md').unlink()

@@ -229,6 +229,8 @@ def markdown(results: dict, figure_dir: str = '') -> str:
     L += _table(['room type', 'metric', 'trained', 'random', 'improvement',
                  'paper improvement'], rows) + ['']
 
+    L += _design_rules(rts)
+
     # gallery
     L += ['## Gallery', '', 'Top row: held-out shells furnished by the model; bottom row: the '
           'same shells furnished by the corpus rules.', '']
@@ -301,6 +303,37 @@ def _reading(rts: dict) -> list[str]:
             text += 'as close to the training rooms as unseen corpus rooms are: no copying).'
         L.append(text)
     return L + ['']
+
+
+def _rate(kept_cases) -> str:
+    kept, cases = kept_cases
+    return f'{_pct(kept / cases)} ({cases})' if cases else '–'
+
+
+def _design_rules(rts: dict) -> list[str]:
+    """Section 7: every design rule, corpus beside synthesized, per room type."""
+    with_rules = {rt: r['design_rules'] for rt, r in rts.items() if r.get('design_rules')}
+    if not with_rules:          # results written before the rules existed
+        return []
+    L = ['## 7. Design rules', '',
+         'What a designer checks, asked of every case a rule applies to (`scene_synth_ros/'
+         'evaluation/design_rules/`): the share of cases that keep the rule, number of cases '
+         'in brackets, in held-out corpus rooms and in the same shells synthesized; the '
+         'difference in percentage points, and the p-value of a two-sided test that the '
+         'two shares are equal. The rules:', '']
+    first = next(iter(with_rules.values()))
+    L += [f'- `{name}` ({d["family"]}): {d["question"]}' for name, d in first.items()] + ['']
+    rows = []
+    for rt, table in with_rules.items():
+        for name, d in table.items():
+            (ka, na), (kb, nb) = d['corpus'], d['synthesized']
+            if not (na or nb):
+                continue
+            diff = (f'{100 * (kb / nb - ka / na):+.1f}' if na and nb else '–')
+            rows.append([rt, name, _rate(d['corpus']), _rate(d['synthesized']), diff,
+                         f'{d["p"]:.3f}'])
+    return L + _table(['room type', 'rule', 'held-out corpus', 'synthesized',
+                       'difference (points)', 'p'], rows) + ['']
 
 
 def _fig(figure_dir: str, name: str) -> str:

@@ -129,6 +129,7 @@ def evaluate_room_type(room_type: str, cfg: EvalConfig, out: Path, bundle: dict,
         classifier,
         components,
         data,
+        design_rules,
         distribution,
         figures,
         plausibility,
@@ -169,6 +170,12 @@ def evaluate_room_type(room_type: str, cfg: EvalConfig, out: Path, bundle: dict,
                     progress=progress, chunksize=16)
         res['plausibility'][name] = plausibility.summarize(rows)
     stage('distribution, speed, plausibility')
+
+    rule_rows = {name: pmap(design_rules.measure, scenes, workers, desc=f'{rt} rules {name}',
+                            progress=progress, chunksize=16)
+                 for name, scenes in (('corpus', heldout), ('synthesized', synth))}
+    res['design_rules'] = design_rules.summarize(rule_rows['corpus'], rule_rows['synthesized'])
+    stage('design rules')
 
     side = (cfg.classifier_train + cfg.classifier_test) // 2
     ccfg = classifier.ClassifierConfig(widths=tuple(cfg.classifier_widths),

@@ -1,0 +1,85 @@
+"""Design rules in corpus rooms and in synthesized rooms, side by side, per room type.
+
+    .venv/bin/python benchmarks/design_rules.py [-n 150] [--room-type all] [--workers 2]
+
+Corpus rooms are held-out rooms (seed ``corpus.HELDOUT_SEED``); synthesized rooms are the same
+empty shells furnished by the shipped weights, room ``i`` with synthesis seed ``i``. Each cell
+is the rate at which a rule is kept (cases in brackets), then synthesized minus corpus in
+percentage points and the p-value of the test of equal proportions. A rule meets issue 11's
+target when the difference is within 5 points (3 for wall contact, floating pieces, windows
+and reachability).
+"""
+import argparse
+from pathlib import Path
+import sys
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from scene_synth_ros.categories import ROOM_TYPES  # noqa: E402
+from scene_synth_ros.corpus import HELDOUT_SEED  # noqa: E402
+from scene_synth_ros.corpus.generate import empty_room, generate_room  # noqa: E402
+from scene_synth_ros.evaluation.design_rules import compare  # noqa: E402
+from scene_synth_ros.parallel import process_pool  # noqa: E402
+
+TIGHT = ('wall_contact', 'floating', 'window', 'reachable')   # 3-point targets, by name part
+_synth = None
+
+
+def _init_worker():
+    global _synth
+    import torch
+    torch.set_num_threads(1)
+    from scene_synth_ros.synth import Synthesizer
+    _synth = Synthesizer()
+
+
+def _synthesize(job):
+    rt, i = job
+    return _synth.generate(empty_room(rt, HELDOUT_SEED, i), seed=i).scene
+
+
+def _rate(rate) -> str:
+    value = f'{rate.value:7.1%}' if rate.cases else f'{"–":>7s}'
+    return f'{value} ({rate.cases:5d})'
+
+
+def target(name: str) -> float:
+    return 0.03 if any(part in name for part in TIGHT) else 0.05
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument('-n', type=int, default=150, help='rooms per room type and source')
+    ap.add_argument('--room-type', default='all')
+    ap.add_argument('--workers', type=int, default=2)
+    args = ap.parse_args()
+    room_types = ROOM_TYPES if args.room_type == 'all' else (args.room_type,)
+    jobs = [(rt, i) for rt in room_types for i in range(args.n)]
+    with process_pool(args.workers, _init_worker) as pool:
+        synthesized = pool.map(_synthesize, jobs, chunksize=4)
+    print(f'design rules kept: held-out corpus vs synthesized, {args.n} rooms per type '
+          f'(held-out shells, synthesis seeds 0..{args.n - 1})')
+    met = total = 0
+    for rt in room_types:
+        corpus = [generate_room(rt, HELDOUT_SEED, i) for i in range(args.n)]
+        synth = [s for (r, _), s in zip(jobs, synthesized, strict=True) if r == rt]
+        print(f'\n{rt}\n  {"rule":30s} {"corpus":>15s} {"synthesized":>15s} {"diff":>7s} '
+              f'{"p":>7s}  target')
+        for c in compare(corpus, synth):
+            if not c.corpus.cases and not c.synthesized.cases:
+                continue
+            cells = f'  {c.rule.name:30s} {_rate(c.corpus)} {_rate(c.synthesized)} '
+            if not (c.corpus.cases and c.synthesized.cases):    # nothing to compare with
+                print(cells + f'{"–":>6s} {"–":>7s}  n/a')
+                continue
+            ok = abs(c.difference) <= target(c.rule.name) + 1e-12
+            met, total = met + ok, total + 1
+            print(cells + f'{100 * c.difference:+6.1f} {c.p_value:7.3f}  '
+                  f'{"met" if ok else "missed"} (±{100 * target(c.rule.name):.0f})')
+    print(f'\n{met} of {total} rule x room-type targets met')
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,320 @@
+"""Access rules: whether what a person (or the robot) uses in a room can be got at.
+
+Clearances are measured on *clear strips*: the floor strip that starts at one side of an
+object's footprint and runs ``depth`` metres out from it, as wide as that side is long. A
+strip is blocked along the stretch of the side where another first-tier footprint, shrunk
+by ``TOLERANCE`` on every side, or the outside of the floor, grown by ``TOLERANCE``, enters
+it (an obstacle blocks the whole depth of the stretch it covers: one cannot stand behind
+it). ``clear_stretch`` is the longest unblocked stretch; a side "has ``depth`` clear" when
+that stretch is the whole side less ``TOLERANCE`` at each end. Second-tier objects never
+block: they stand on their parents.
+
+storage_clearance
+    Case: a first-tier wardrobe, dresser, dressing table, shelving, shoes cabinet, cabinet or
+    washer. Kept when the whole front has ``STORAGE_CLEARANCE`` (0.5 m) clear, so that doors
+    and drawers open and someone can stand before them; the seat of a dressing table (a
+    chair, stool, ottoman or bench) does not block it, since it is pulled out to be used.
+
+fixture_clearance
+    Case: a first-tier toilet, bidet, sink, shower or bathtub. Kept when its activity space
+    in front is clear: the whole front of a toilet or bidet has 0.6 m clear and that of a
+    sink 0.5 m (``FIXTURE_CLEARANCE``); a shower's entry side (its front: the corpus backs a
+    shower onto one wall of a corner) has 0.6 m clear over at least the 0.6 m of its door,
+    and a bathtub's front long side has 0.5 m clear over at least 0.6 m, where one steps in
+    (``ENTRY_STRETCH``).
+
+bed_access
+    Case: a first-tier bed (double, single, bunker, baby bed, daybed). Kept for a double
+    bed when both long sides (left and right) have ``BED_CLEARANCE`` (0.4 m, the robot's
+    width) clear over at least ``BED_STRETCH`` (0.6 m): each sleeper gets in on their own
+    side, and a nightstand at the head takes only part of a side. Kept for the others when
+    the foot (the front) or one long side has the same (for a daybed, whose long side is its
+    front, the front or an end). A bench or ottoman at the foot blocks the foot.
+
+front_not_to_wall
+    Case: a first-tier object whose front a person uses (``USED_FRONT``: storage, the
+    nightstand, TV stand, desk, beds, seats with a back, bathroom fixtures, piano,
+    fireplace, whiteboard, water machine). Kept when the whole front has ``WALL_CLEARANCE``
+    (0.3 m) of floor before any wall: only walls count here; other furniture in front is the
+    business of the clearance rules.
+
+front_reachable
+    Case: a first-tier object in a room with at least one door. Kept when a round robot of
+    ``geometry.ROBOT_WIDTH`` (0.4 m) driving in from a door can bring its body within
+    ``ROBOT_REACH`` (0.15 m) of the object: straight in front of its front side (its centre
+    within the strip as wide as the front and robot radius plus reach deep) for the objects
+    operated at the front (``OPERATED_FRONT``: storage, nightstand, TV stand, desk, bathroom
+    fixtures, piano, fireplace, whiteboard, water machine), anywhere around its footprint
+    for the others (beds, seats, tables, lamps: used from a side, or moved to be used).
+    Where the robot's centre can be is ``geometry.free_space``, computed once per room;
+    the robot can drive to its components that hold the ``geometry.door_entry_point`` of a
+    door. Reaching a front corner from the side does not count: a wardrobe behind a bed
+    with a 0.3 m gap is not reached.
+
+room_fully_reachable
+    Case: a room with at least one door. Kept when every first-tier object of the room
+    keeps ``front_reachable`` (a room without furniture keeps it).
+"""
+from __future__ import annotations
+
+from functools import cached_property
+
+import numpy as np
+import shapely
+from shapely.geometry import Polygon
+from shapely.prepared import prep
+
+from ...geometry import ROBOT_WIDTH, door_entry_point, free_space, shrunk_footprint
+from ...scene import PlacedObject, Scene, box_corners
+from . import Outcome, Rule
+from .spatial import side
+
+# A footprint that enters a strip by 2 cm or less, or a wall that does, leaves it clear: the
+# corpus places neighbours 2 mm apart and synthesized rooms have a little yaw jitter, and a
+# 2 cm overhang stops neither a drawer nor a robot.
+TOLERANCE = 0.02
+
+# Storage: 0.5 m is the least depth in front of wardrobe doors and drawers that lets them
+# open and a person stand in front of them (design guides ask for 0.6-0.9 m).
+STORAGE_CLEARANCE = 0.5
+STORAGE = ('wardrobe', 'dresser', 'dressing table', 'shelving', 'shoes cabinet', 'cabinet',
+           'washer')
+# The seat of a dressing table is pulled out to use it, so it does not block the table.
+SEATS = ('office chair', 'straight chair', 'chair', 'stool', 'ottoman', 'bench chair')
+
+# Fixtures: the usual activity spaces of bathroom planning guides: 0.6 m in front of a WC or
+# a bidet, 0.5 m in front of a washbasin, 0.6 m at a shower's entry, 0.5 m along the side of
+# a bath from which one gets in.
+FIXTURE_CLEARANCE = {'toilet': 0.6, 'bidet': 0.6, 'sink': 0.5, 'shower': 0.6, 'bathtub': 0.5}
+# Where one gets in needs only part of the side clear: a shower door is about 0.6 m wide, and
+# one steps into a bath somewhere along its long side, over a person's 0.6 m of shoulders.
+ENTRY_STRETCH = {'shower': 0.6, 'bathtub': 0.6}
+
+# Beds: the robot's width is the least useful gap beside a bed (the review's threshold), and
+# 0.6 m of a side, a person's shoulders, is where one gets in.
+BED_CLEARANCE = ROBOT_WIDTH
+BED_STRETCH = 0.6
+BEDS = ('double bed', 'single bed', 'bunker bed', 'baby bed', 'daybed')
+
+# Fronts a person uses: one should not face a wall closer than 0.3 m (a wardrobe's doors, a
+# chair's knees, a toilet's user).
+WALL_CLEARANCE = 0.3
+OPERATED_FRONT = STORAGE + tuple(FIXTURE_CLEARANCE) + (
+    'stand', 'tv stand', 'desk', 'piano', 'fireplace', 'whiteboard', 'water machine')
+USED_FRONT = OPERATED_FRONT + BEDS + (
+    'sofa', 'sofa chair', 'armchair', 'office chair', 'straight chair', 'chair')
+
+# The robot reaches an object when its body gets within 0.15 m of it: close enough to look at
+# or grasp what is there, without asking for a free corridor wider than the robot.
+ROBOT_REACH = 0.15
+# A reach zone that the free space meets only along its edge is touched, not entered: the
+# zones are inset by a millimetre.
+INSET = 1e-3
+
+
+# ---- clear strips ------------------------------------------------------------------------
+def _strip(obj: PlacedObject, which: str, depth: float) -> tuple[Polygon, np.ndarray, float]:
+    """The strip ``depth`` deep outside one side, the side's start and its unit direction
+    folded into (start, direction), and the side's length."""
+    a, b = (np.asarray(p) for p in side(obj, which).coords)
+    length = float(np.linalg.norm(b - a))
+    along = (b - a) / length
+    out = np.array([along[1], -along[0]])       # sides run counter-clockwise: out is right
+    strip = Polygon([a, b, b + out * depth, a + out * depth])
+    return strip, np.stack([a, along]), length
+
+
+class _Obstacles:
+    """What blocks a strip in one room: its first-tier footprints shrunk by the tolerance,
+    and the outside of its floor grown by it."""
+
+    def __init__(self, scene: Scene):
+        self.objects = scene.first_tier
+        self.floor = scene.room.polygon.buffer(TOLERANCE, join_style='mitre')
+        self._floor = prep(self.floor)
+
+    @cached_property
+    def _shrunk(self) -> list[Polygon]:
+        return [shrunk_footprint(o, TOLERANCE) for o in self.objects]
+
+    @cached_property
+    def _tree(self) -> shapely.STRtree:
+        return shapely.STRtree(self._shrunk)
+
+    def outside(self, strip: Polygon) -> list:
+        """The pieces of ``strip`` beyond the walls."""
+        if self._floor.covers(strip):
+            return []
+        return list(shapely.get_parts(strip.difference(self.floor)))
+
+    def blocking(self, obj: PlacedObject, strip: Polygon, ignore=()) -> list:
+        """The pieces of ``strip`` that the walls and objects other than ``obj`` (and not of
+        the ``ignore`` categories) cover."""
+        parts = self.outside(strip)
+        for k in self._tree.query(strip, predicate='intersects'):
+            other = self.objects[k]
+            if other is not obj and other.category not in ignore:
+                parts.append(strip.intersection(self._shrunk[k]))    # both convex: one piece
+        return parts
+
+    def clear_stretch(self, obj: PlacedObject, which: str, depth: float,
+                      ignore=(), walls_only: bool = False) -> tuple[float, float]:
+        """The longest stretch of a side with ``depth`` clear before it, and the side's
+        length."""
+        strip, (start, along), length = _strip(obj, which, depth)
+        parts = self.outside(strip) if walls_only else self.blocking(obj, strip, ignore)
+        spans = []
+        for part in parts:
+            coords = shapely.get_coordinates(part)
+            if len(coords):
+                t = (coords - start) @ along
+                spans.append((max(float(t.min()), 0.0), min(float(t.max()), length)))
+        return _longest_gap(spans, length), length
+
+
+def _longest_gap(spans: list[tuple[float, float]], length: float) -> float:
+    """The longest part of [0, length] that no span covers."""
+    best, reached = 0.0, 0.0
+    for lo, hi in sorted(spans):
+        best = max(best, lo - reached)
+        reached = max(reached, hi)
+    return max(best, length - reached)
+
+
+def _whole(stretch_and_length: tuple[float, float]) -> bool:
+    stretch, length = stretch_and_length
+    return stretch >= length - 2 * TOLERANCE
+
+
+# ---- the rules ---------------------------------------------------------------------------
+def _cases(scene: Scene, categories) -> tuple[list[PlacedObject], _Obstacles | None]:
+    cases = [o for o in scene.first_tier if o.category in categories]
+    return cases, (_Obstacles(scene) if cases else None)
+
+
+def storage_clearance(scene: Scene) -> Outcome:
+    cases, room = _cases(scene, STORAGE)
+    kept = sum(_whole(room.clear_stretch(
+        o, 'front', STORAGE_CLEARANCE, SEATS if o.category == 'dressing table' else ()))
+        for o in cases)
+    return kept, len(cases)
+
+
+def _fixture_clear(room: _Obstacles, obj: PlacedObject) -> bool:
+    found = room.clear_stretch(obj, 'front', FIXTURE_CLEARANCE[obj.category])
+    if obj.category in ENTRY_STRETCH:
+        return found[0] >= min(ENTRY_STRETCH[obj.category], found[1] - 2 * TOLERANCE)
+    return _whole(found)
+
+
+def fixture_clearance(scene: Scene) -> Outcome:
+    cases, room = _cases(scene, FIXTURE_CLEARANCE)
+    return sum(_fixture_clear(room, o) for o in cases), len(cases)
+
+
+def _side_usable(room: _Obstacles, bed: PlacedObject, which: str) -> bool:
+    stretch, length = room.clear_stretch(bed, which, BED_CLEARANCE)
+    return stretch >= min(BED_STRETCH, length - 2 * TOLERANCE)
+
+
+def _bed_accessible(room: _Obstacles, bed: PlacedObject) -> bool:
+    if bed.category == 'double bed':
+        return _side_usable(room, bed, 'left') and _side_usable(room, bed, 'right')
+    return any(_side_usable(room, bed, s) for s in ('front', 'left', 'right'))
+
+
+def bed_access(scene: Scene) -> Outcome:
+    cases, room = _cases(scene, BEDS)
+    return sum(_bed_accessible(room, b) for b in cases), len(cases)
+
+
+def front_not_to_wall(scene: Scene) -> Outcome:
+    cases, room = _cases(scene, USED_FRONT)
+    kept = sum(_whole(room.clear_stretch(o, 'front', WALL_CLEARANCE, walls_only=True))
+               for o in cases)
+    return kept, len(cases)
+
+
+# ---- the robot ---------------------------------------------------------------------------
+def reach_zone(obj: PlacedObject, robot_width: float = ROBOT_WIDTH) -> Polygon:
+    """Where the robot's centre may be to reach ``obj``: straight in front of the front side
+    and within the robot's radius plus ``ROBOT_REACH`` of it (``OPERATED_FRONT``), or within
+    that distance of the footprint (other objects)."""
+    r = robot_width / 2 + ROBOT_REACH - INSET
+    if obj.category not in OPERATED_FRONT:
+        return obj.footprint().buffer(r)
+    centre = np.asarray(obj.position[:2]) + obj.front * (obj.depth + r) / 2
+    return Polygon(box_corners(centre[0], centre[1], obj.yaw, obj.width - 2 * INSET, r))
+
+
+def door_reachable_space(scene: Scene, robot_width: float = ROBOT_WIDTH):
+    """The parts of ``geometry.free_space`` that hold a door's entry point: where the robot's
+    centre can go after driving in (empty without doors)."""
+    free = free_space(scene, robot_width)
+    parts = [p for p in getattr(free, 'geoms', [free]) if not p.is_empty]
+    entries = [door_entry_point(scene.room, d, robot_width) for d in scene.room.doors]
+    return shapely.union_all([p for p in parts if any(p.distance(e) < 1e-6 for e in entries)])
+
+
+def unreachable(scene: Scene, robot_width: float = ROBOT_WIDTH) -> list[PlacedObject]:
+    """First-tier objects the robot cannot reach from a door (see ``front_reachable``)."""
+    objects = scene.first_tier
+    key = (robot_width, [(o.category, o.position, o.yaw, o.size) for o in objects])
+    last = _last_room.get('unreachable')
+    if last is None or last[0] is not scene.room or last[1] != key:
+        space = door_reachable_space(scene, robot_width)
+        fast = prep(space)
+        missed = [k for k, o in enumerate(objects)
+                  if space.is_empty or not fast.intersects(reach_zone(o, robot_width))]
+        last = _last_room['unreachable'] = (scene.room, key, missed)
+    return [objects[k] for k in last[2]]
+
+
+# front_reachable and room_fully_reachable ask about the same room one after the other: the
+# free space, the costly part, is computed once for both.
+_last_room: dict = {}
+
+
+def front_reachable(scene: Scene) -> Outcome:
+    if not scene.room.doors:
+        return 0, 0
+    cases = len(scene.first_tier)
+    return cases - len(unreachable(scene)), cases
+
+
+def room_fully_reachable(scene: Scene) -> Outcome:
+    if not scene.room.doors:
+        return 0, 0
+    return int(not unreachable(scene)), 1
+
+
+RULES: tuple[Rule, ...] = (
+    Rule('storage_clearance', 'access',
+         'Storage (wardrobe, dresser, dressing table, shelving, shoes cabinet, cabinet, '
+         'washer): is there 0.5 m of clear floor in front of its whole front?',
+         storage_clearance),
+    Rule('fixture_clearance', 'access',
+         'Toilet, bidet, sink, shower, bathtub: is the floor before its front clear, 0.6 m '
+         'deep for a toilet or bidet and 0.5 m for a sink over the whole front, 0.6 m for a '
+         'shower and 0.5 m for a bath over at least 0.6 m of it?',
+         fixture_clearance),
+    Rule('bed_access', 'access',
+         'Bed: do both long sides (double bed), or its foot or one long side (other beds), '
+         'have 0.4 m of clear floor along at least 0.6 m?',
+         bed_access),
+    Rule('front_not_to_wall', 'access',
+         'Object with a front in use (storage, nightstand, desk, bed, seat with a back, '
+         'fixture, TV stand...): is there at least 0.3 m of floor between its whole front and '
+         'any wall?',
+         front_not_to_wall),
+    Rule('front_reachable', 'access',
+         'First-tier object in a room with a door: can a 0.4 m robot from a door get within '
+         '0.15 m of it, straight in front of its front for storage, desks, fixtures and the '
+         'like, on any side for beds, seats, tables and lamps?',
+         front_reachable),
+    Rule('room_fully_reachable', 'access',
+         'Room with a door: does every first-tier object in it keep front_reachable (a 0.4 m '
+         'robot from a door gets within 0.15 m of its front, or of any side where it has none '
+         'in use)?',
+         room_fully_reachable),
+)
