@@ -195,7 +195,7 @@ def test_quick_report_of_one_room_type_is_written_with_finite_numbers(cli, tmp_p
                     'Speed', 'Physical plausibility', 'Generalisation', 'Component metrics',
                     'Design rules', 'Gallery'):
         assert heading in index
-    for name in ('categories', 'similarity', 'gallery'):
+    for name in ('categories', 'similarity', 'gallery', 'rules_synthesized', 'rules_corpus'):
         png = out / f'{name}_bathroom.png'
         assert png.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n' and f'({png.name})' in index
     saved = json.loads((out / 'results.json').read_text())

@@ -1,4 +1,5 @@
-"""The report's pictures: category frequencies, the similarity histogram, a gallery.
+"""The report's pictures: category frequencies, the similarity histogram, a gallery, the
+worst offender of every design rule.
 
 Figures are drawn with ``matplotlib.figure.Figure`` (no pyplot, no global state) and hold
 nothing that varies between runs of one seed (no timings, no dates)."""
@@ -82,3 +83,21 @@ def gallery(synthesized: Sequence[Scene], corpus: Sequence[Scene], path: str | o
     titles = ([f'model, {room_type} shell #{i}' for i in range(k)]
               + [f'corpus rules, shell #{i}' for i in range(k)])
     return save_grid(scenes, path, ncols=k, titles=titles, cell=3.2)
+
+
+def rule_offenders(scenes: Sequence[Scene], outcomes: Sequence[dict[str, tuple[int, int]]],
+                   path: str | os.PathLike, title: str) -> str | None:
+    """For every design rule some room breaks, the room that breaks it in the most cases
+    (the first such room on ties), titled with the rule and the count; None when no rule is
+    broken anywhere. ``outcomes[i]`` is ``design_rules.measure(scenes[i])``."""
+    picked, titles = [], []
+    for name in outcomes[0] if outcomes else ():
+        broken = [n - k for k, n in (row[name] for row in outcomes)]
+        worst = int(np.argmax(broken))
+        if broken[worst] > 0:
+            kept, cases = outcomes[worst][name]
+            picked.append(scenes[worst])
+            titles.append(f'{name}\n{cases - kept} of {cases} broken ({title} #{worst})')
+    if not picked:
+        return None
+    return save_grid(picked, path, ncols=4, titles=titles, cell=3.4)

@@ -229,7 +229,7 @@ def markdown(results: dict, figure_dir: str = '') -> str:
     L += _table(['room type', 'metric', 'trained', 'random', 'improvement',
                  'paper improvement'], rows) + ['']
 
-    L += _design_rules(rts)
+    L += _design_rules(rts, figure_dir)
 
     # gallery
     L += ['## Gallery', '', 'Top row: held-out shells furnished by the model; bottom row: the '
@@ -310,7 +310,7 @@ def _rate(kept_cases) -> str:
     return f'{_pct(kept / cases)} ({cases})' if cases else '–'
 
 
-def _design_rules(rts: dict) -> list[str]:
+def _design_rules(rts: dict, figure_dir: str) -> list[str]:
     """Section 7: every design rule, corpus beside synthesized, per room type."""
     with_rules = {rt: r['design_rules'] for rt, r in rts.items() if r.get('design_rules')}
     if not with_rules:          # results written before the rules existed
@@ -332,8 +332,16 @@ def _design_rules(rts: dict) -> list[str]:
             diff = (f'{100 * (kb / nb - ka / na):+.1f}' if na and nb else '–')
             rows.append([rt, name, _rate(d['corpus']), _rate(d['synthesized']), diff,
                          f'{d["p"]:.3f}'])
-    return L + _table(['room type', 'rule', 'held-out corpus', 'synthesized',
-                       'difference (points)', 'p'], rows) + ['']
+    L += _table(['room type', 'rule', 'held-out corpus', 'synthesized',
+                 'difference (points)', 'p'], rows) + ['']
+    L += ['The worst offender of every rule broken somewhere: the room that breaks it in the '
+          'most cases (title: rule, cases broken of cases, room).', '']
+    for rt, r in rts.items():
+        for name in ('synthesized', 'corpus'):
+            fig = r['figures'].get(f'rules_{name}')
+            if fig:
+                L += [f'![{rt} {name}: worst offenders]({_fig(figure_dir, fig)})', '']
+    return L
 
 
 def _fig(figure_dir: str, name: str) -> str:

@@ -218,6 +218,11 @@ def evaluate_room_type(room_type: str, cfg: EvalConfig, out: Path, bundle: dict,
                                         heldout[:cfg.gallery_rooms],
                                         out / f'gallery_{rt}.png', rt)).name,
     }
+    for name, scenes in (('synthesized', synth), ('corpus', heldout)):
+        drawn = figures.rule_offenders(scenes, rule_rows[name], out / f'rules_{name}_{rt}.png',
+                                       f'{rt} {name}')
+        if drawn:
+            res['figures'][f'rules_{name}'] = Path(drawn).name
     stage('components and figures')
     return res
 
