@@ -3,8 +3,8 @@
 A designer furnishes a room in functional groups: a seat at each desk, nightstands at the
 head of the bed, the bidet beside the toilet, the sofa facing its coffee table or TV. These
 rules ask, for every piece that belongs to such a group, whether its partner is where the
-group needs it. Distances are between footprints (``spatial.gap``, computed here for the
-rectangles directly by ``footprint_gap``) unless a centre is named;
+group needs it. Distances are between footprints (computed for the rectangles directly by
+``footprint_gap``) unless a centre is named;
 "faces" compares where a piece faces with the direction to a target (``spatial.bearing``).
 The thresholds are module constants, each with the practice or the corpus rule it comes from.
 
@@ -187,7 +187,7 @@ def overlap(a: PlacedObject, b: PlacedObject) -> bool:
 
 
 def footprint_gap(a: PlacedObject, b: PlacedObject) -> float:
-    """Metres between two footprints, 0 when they overlap: ``spatial.gap`` computed for
+    """Metres between two footprints, 0 when they overlap: shapely's distance computed for
     rectangles directly (apart, two convex polygons are nearest at a corner of one)."""
     if overlap(a, b):
         return 0.0
