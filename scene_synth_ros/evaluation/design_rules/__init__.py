@@ -30,6 +30,9 @@ from ...scene import Scene
 
 Outcome = tuple[int, int]          # (cases that keep the rule, cases) in one room
 
+# Every kind of bed, for the rules of every family that ask about beds.
+BEDS = ('double bed', 'single bed', 'bunker bed', 'baby bed', 'daybed')
+
 
 @dataclass(frozen=True)
 class Rule:

@@ -66,7 +66,7 @@ from shapely.prepared import prep
 
 from ...geometry import ROBOT_WIDTH, door_entry_point, free_space, shrunk_footprint
 from ...scene import PlacedObject, Scene, box_corners
-from . import Outcome, Rule
+from . import BEDS, Outcome, Rule
 from .spatial import side
 
 # A footprint that enters a strip by 2 cm or less, or a wall that does, leaves it clear: the
@@ -94,7 +94,6 @@ ENTRY_STRETCH = {'shower': 0.6, 'bathtub': 0.6}
 # 0.6 m of a side, a person's shoulders, is where one gets in.
 BED_CLEARANCE = ROBOT_WIDTH
 BED_STRETCH = 0.6
-BEDS = ('double bed', 'single bed', 'bunker bed', 'baby bed', 'daybed')
 
 # Fronts a person uses: one should not face a wall closer than 0.3 m (a wardrobe's doors, a
 # chair's knees, a toilet's user).

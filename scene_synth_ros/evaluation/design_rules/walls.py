@@ -57,7 +57,7 @@ from shapely.geometry import Polygon
 from ...categories import CATEGORIES
 from ...geometry import ROBOT_WIDTH
 from ...scene import Opening, PlacedObject, Room, Scene, Wall, box_corners
-from . import Rule
+from . import BEDS, Rule
 from .spatial import bearing
 
 # A back within 10 cm of the wall reads as against it: skirting boards, sockets and cables
@@ -95,8 +95,6 @@ WINDOW_ZONE_DEPTH = 0.20
 # A quarter of a window's width is the most that may be hidden: a floor lamp or the corner of
 # a wardrobe at the edge, not a wardrobe in front of it.
 WINDOW_SHARE = 0.25
-
-BEDS = ('double bed', 'single bed', 'bunker bed', 'baby bed', 'daybed')
 
 WALL_FURNITURE = frozenset(c.name for c in CATEGORIES.values()
                            if c.tier == 'first' and c.against_wall)
