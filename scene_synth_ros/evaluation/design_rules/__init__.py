@@ -96,16 +96,22 @@ def measure(scene: Scene, selected: Sequence[Rule] | None = None) -> dict[str, O
     return {r.name: r.measure(scene) for r in (selected or rules())}
 
 
-def rates(scenes: Iterable[Scene], selected: Sequence[Rule] | None = None) -> dict[str, Rate]:
-    """Every rule's rate over ``scenes``."""
-    selected = tuple(selected or rules())
+def totals(rows: Iterable[dict[str, Outcome]], selected: Sequence[Rule]) -> dict[str, Rate]:
+    """Every selected rule's rate from per-room outcomes (``measure`` of each room)."""
     kept = dict.fromkeys((r.name for r in selected), 0)
     cases = dict.fromkeys(kept, 0)
-    for scene in scenes:
-        for name, (k, n) in measure(scene, selected).items():
+    for row in rows:
+        for name in kept:
+            k, n = row.get(name, (0, 0))
             kept[name] += k
             cases[name] += n
     return {name: Rate(kept[name], cases[name]) for name in kept}
+
+
+def rates(scenes: Iterable[Scene], selected: Sequence[Rule] | None = None) -> dict[str, Rate]:
+    """Every rule's rate over ``scenes``."""
+    selected = tuple(selected or rules())
+    return totals((measure(scene, selected) for scene in scenes), selected)
 
 
 def compare(corpus: Iterable[Scene], synthesized: Iterable[Scene]) -> list[Comparison]:
@@ -119,19 +125,11 @@ def summarize(corpus_rows: Iterable[dict[str, Outcome]],
               synthesized_rows: Iterable[dict[str, Outcome]]) -> dict[str, dict]:
     """The evaluation's record of every rule from per-room outcomes (``measure`` of each
     room): its family and question, (kept, cases) on each side and the p-value."""
-    totals = {}
-    for side, rows in (('corpus', corpus_rows), ('synthesized', synthesized_rows)):
-        sums: dict[str, list[int]] = {}
-        for row in rows:
-            for name, (k, n) in row.items():
-                s = sums.setdefault(name, [0, 0])
-                s[0] += k
-                s[1] += n
-        totals[side] = sums
-    out = {}
-    for r in rules():
-        a = totals['corpus'].get(r.name, [0, 0])
-        b = totals['synthesized'].get(r.name, [0, 0])
-        out[r.name] = {'family': r.family, 'question': r.question, 'corpus': a,
-                       'synthesized': b, 'p': two_proportion_p(a[0], a[1], b[0], b[1])}
-    return out
+    selected = rules()
+    a, b = totals(corpus_rows, selected), totals(synthesized_rows, selected)
+    return {r.name: {'family': r.family, 'question': r.question,
+                     'corpus': [a[r.name].kept, a[r.name].cases],
+                     'synthesized': [b[r.name].kept, b[r.name].cases],
+                     'p': two_proportion_p(a[r.name].kept, a[r.name].cases,
+                                           b[r.name].kept, b[r.name].cases)}
+            for r in selected}
