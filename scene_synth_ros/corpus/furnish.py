@@ -1,14 +1,20 @@
 """Interior-design rules that furnish a room shell.
 
-A room is furnished in two steps. First a *plan*: which objects the room gets, drawn so
+A room is furnished in three steps. First a *plan*: which objects the room gets, drawn so
 that every category's mean count per room is the paper's table frequency (times a
-calibration factor that makes up for objects that did not fit; see ``calibration``). Then
-each object is placed by the rule of its category, anchors first: beds and sofas go against
-walls, nightstands beside beds, chairs at desks, coffee tables before sofas, TV stands across
-from what faces them, and so on; second-tier objects go on a valid supporting surface.
+calibration factor that makes up for objects that did not fit; see ``calibration``), with the
+partners its pieces need (``with_partners``). Then each object is placed by the rule of its
+category, anchors first: beds and sofas go against walls, nightstands at the head of beds,
+chairs at desks and tables, coffee tables before sofas, TV stands across from what faces
+them, and so on, each keeping off the floor the pieces before it keep clear and finding the
+floor it needs itself (``clearance``). Last, ``tidy`` does what a designer would on a walk
+through the room: it takes out what the robot cannot reach and what stands outside its group.
+Second-tier objects then go on a surface that can hold them and where a designer expects
+them (``design_rules.groups.PLAUSIBLE_PARENTS``).
 """
 from __future__ import annotations
 
+from collections import Counter
 import math
 from typing import Callable
 
@@ -17,6 +23,7 @@ import numpy as np
 from .. import catalog
 from ..catalog import ModelVariant
 from ..categories import CATEGORIES, room_spec
+from ..evaluation.design_rules import access, groups
 from ..scene import PlacedObject
 from .layout import Layout
 
@@ -97,10 +104,38 @@ def draw_plan(room_type: str, rng: np.random.Generator,
     for c in spec.categories:
         if c.name not in skip:
             plan += [c.name] * draw_count(rate[c.name], rng, paired=c.name in PAIRED)
+    plan = with_partners(room_type, plan, rate, rng)
     first = sorted((n for n in plan if CATEGORIES[n].tier == 'first'),
                    key=lambda n: (PHASE.get(n, 1), -spec[n].importance))
     second = [n for n in plan if CATEGORIES[n].tier == 'second']
     return first + second
+
+
+def with_partners(room_type: str, plan: list[str], rate: dict[str, float],
+                  rng: np.random.Generator) -> list[str]:
+    """The plan with the partners its pieces need and without pieces that have none: seating
+    for a coffee table, a nightstand for a double bed; no bidet without a toilet, no
+    loudspeakers without a TV stand or a desk. (Calibration brings the categories' rates back
+    to the table's.) Desks and sofas are not given a seat or a coffee table: the table has
+    fewer of those than of them (bedrooms: 0.69 desks and dressing tables a room, 0.47
+    seats), so that every desk seated would take the categories away from the table's."""
+    plan = list(plan)
+    count = Counter(plan)
+
+    def add(options) -> None:
+        options = [c for c in options if rate.get(c, 0.0) > 0]
+        if options:
+            p = np.array([rate[c] for c in options])
+            plan.append(options[rng.choice(len(options), p=p / p.sum())])
+
+    if count['coffee table'] and not any(count[c] for c in groups.LOUNGE_SEATS):
+        add(groups.LOUNGE_SEATS)
+    if room_type == 'bedroom' and count['double bed'] and not count['stand']:
+        add(('stand',))
+    drop = {'bidet'} if not count['toilet'] else set()
+    if not count['tv stand'] and not count['desk']:
+        drop.add('loudspeaker')
+    return [c for c in plan if c not in drop]
 
 
 def pick_variant(category: str, rng: np.random.Generator,
@@ -126,7 +161,7 @@ def _unseated(lay: Layout, categories) -> list[PlacedObject]:
 
 
 def _seat_at(lay: Layout, v: ModelVariant, anchors, distance=(0.02, 0.2),
-             jitter: float = 0.12) -> PlacedObject | None:
+             jitter: float = 0.06) -> PlacedObject | None:
     for anchor in _unseated(lay, anchors):
         lateral = lay.rng.uniform(-0.15, 0.15) * anchor.width
         obj = lay.facing(anchor, v, lay.rng.uniform(*distance), lateral, yaw_jitter=jitter)
@@ -175,9 +210,23 @@ def _rule_wall_corner(lay, v):
 
 
 def _rule_stand(lay, v):
-    # A nightstand on a free side of a bed, else any wall.
-    return _first(lambda: _beside_any(lay, v, ('double bed', 'single bed'), (0.02, 0.06)),
-                  lambda: lay.against_wall(v, 'any'))
+    # In a bedroom a nightstand stands at the head of a bed or not at all; double beds are
+    # served first, those without one before those with one. Elsewhere it is a side table.
+    if lay.room.room_type != 'bedroom':
+        return lay.against_wall(v, 'any')
+    beds = lay.first_tier('double bed', 'single bed', 'bunker bed')
+    served = {s.id: _stands_at(lay, s) for s in beds}
+    beds.sort(key=lambda b: (served[b.id], b.category != 'double bed'))
+    for bed in beds:
+        for side in lay.rng.permutation([-1, 1]):
+            obj = lay.beside(bed, v, int(side), lay.rng.uniform(0.02, 0.06))
+            if obj is not None:
+                return obj
+    return None
+
+
+def _stands_at(lay: Layout, bed: PlacedObject) -> int:
+    return sum(1 for s in lay.first_tier('stand') if groups.at_head_of(s, bed))
 
 
 def _rule_tv_stand(lay, v):
@@ -210,8 +259,8 @@ def _rule_chair(lay, v):
                 if obj is not None:
                     return obj
         return None
-    return _first(lambda: _seat_at(lay, v, SEATED_BY), at_table_end,
-                  lambda: lay.against_wall(v, 'any', yaw_jitter=0.08))
+    # A chair is placed to be sat at a table, never lined along a wall.
+    return _first(lambda: _seat_at(lay, v, SEATED_BY), at_table_end)
 
 
 def _rule_stool(lay, v):
@@ -235,15 +284,23 @@ def _rule_ottoman(lay, v):
 
 def _rule_easy_chair(lay, v):
     def at_table():
-        for table in lay.first_tier('coffee table'):
+        # Coffee tables nobody sits at first: each needs its seating.
+        tables = sorted(lay.first_tier('coffee table'), key=lambda t: _has_seating(lay, t))
+        for table in tables:
             for side in lay.rng.permutation([-1, 1]):
                 obj = lay.at_side_facing(table, v, int(side), lay.rng.uniform(0.2, 0.45),
-                                         yaw_jitter=0.15)
+                                         yaw_jitter=0.04)
                 if obj is not None:
                     return obj
         return None
-    return _first(at_table, lambda: lay.in_corner(v, diagonal=True, yaw_jitter=0.15),
-                  lambda: lay.against_wall(v, 'any', yaw_jitter=0.1))
+    # Square to the walls: a seat turned across a corner reads as left askew.
+    return _first(at_table, lambda: lay.in_corner(v, diagonal=False),
+                  lambda: lay.against_wall(v, 'any', yaw_jitter=0.04))
+
+
+def _has_seating(lay: Layout, table: PlacedObject) -> bool:
+    return any(groups.faces(s, table) and groups.within_reach(s, table, groups.LOUNGE_REACH)
+               for s in lay.first_tier(*groups.LOUNGE_SEATS))
 
 
 def _rule_floor_lamp(lay, v):
@@ -253,8 +310,9 @@ def _rule_floor_lamp(lay, v):
 
 
 def _rule_loudspeaker(lay, v):
+    # Speakers flank what they play: a TV stand, else a desk's computer, or nothing.
     return _first(lambda: _beside_any(lay, v, ('tv stand',), (0.05, 0.2)),
-                  lambda: lay.in_corner(v, diagonal=False))
+                  lambda: _beside_any(lay, v, ('desk',), (0.05, 0.2)))
 
 
 def _rule_corner_item(lay, v):
@@ -262,8 +320,17 @@ def _rule_corner_item(lay, v):
 
 
 def _rule_bidet(lay, v):
-    return _first(lambda: _beside_any(lay, v, ('toilet',), (0.15, 0.3)),
-                  lambda: lay.against_wall(v, 'any'))
+    # On the toilet's plumbing wall, beside it, or not at all.
+    return _beside_any(lay, v, ('toilet',), (0.15, 0.3))
+
+
+def _rule_bath(lay, v):
+    # A bath fills a corner, or the room has none.
+    return lay.against_wall(v, 'corner')
+
+
+def _rule_shower(lay, v):
+    return lay.in_corner(v, diagonal=False)
 
 
 def _rule_trash_can(lay, v):
@@ -286,8 +353,8 @@ RULES: dict[str, Rule] = {
     'sofa chair': _rule_easy_chair, 'armchair': _rule_easy_chair,
     'floor lamp': _rule_floor_lamp, 'loudspeaker': _rule_loudspeaker,
     'pedestal fan': _rule_corner_item, 'hanger': _rule_corner_item,
-    'bidet': _rule_bidet, 'trash can': _rule_trash_can, 'bathtub': _rule_wall_corner,
-    'shower': _rule_corner_item, 'shelving': _rule_wall_corner,
+    'bidet': _rule_bidet, 'trash can': _rule_trash_can, 'bathtub': _rule_bath,
+    'shower': _rule_shower, 'shelving': _rule_wall_corner,
 }
 
 
@@ -314,7 +381,9 @@ def place_first_tier(lay: Layout, category: str, variant: ModelVariant) -> Place
 def place_second_tier(lay: Layout, category: str, variant: ModelVariant) -> PlacedObject | None:
     """Put a second-tier object on a parent that can support it, preferred ones first."""
     spec = room_spec(lay.room.room_type)
-    parents = [p for p in lay.first_tier(*spec.supports(category))]
+    plausible = groups.PLAUSIBLE_PARENTS.get(category)
+    parents = [p for p in lay.first_tier(*spec.supports(category))
+               if plausible is None or p.category in plausible]
     if category in ONE_PER_PARENT:
         parents = [p for p in parents
                    if not any(c.category == category for c in lay.scene.children_of(p.id))]
@@ -333,3 +402,46 @@ def place_second_tier(lay: Layout, category: str, variant: ModelVariant) -> Plac
             if obj is not None:
                 return obj
     return None
+
+
+# ---- what a designer takes out again ------------------------------------------------------
+def _belongs(lay: Layout, obj: PlacedObject) -> bool:
+    """Whether a piece that only makes sense in a group is in it."""
+    if obj.category == 'stand' and lay.room.room_type == 'bedroom':
+        return any(groups.at_head_of(obj, b) for b in lay.first_tier(*groups.BEDS_WITH_HEAD))
+    if obj.category in groups.CHAIRS:
+        return any(groups.seated_at(obj, t) for t in lay.first_tier(*groups.TABLES))
+    if obj.category == 'coffee table':
+        return _has_seating(lay, obj)
+    if obj.category == 'bidet':
+        return any(groups.within_reach(obj, t, groups.BIDET_GAP) and groups.on_one_line(obj, t)
+                   for t in lay.first_tier('toilet'))
+    return True
+
+
+def _complete(lay: Layout) -> None:
+    """Give a double bed that did not get a nightstand from the plan one, where it fits."""
+    if lay.room.room_type != 'bedroom':
+        return
+    for bed in lay.first_tier('double bed'):
+        if not _stands_at(lay, bed):
+            v = pick_variant('stand', lay.rng)
+            for side in lay.rng.permutation([-1, 1]):
+                if v is not None and lay.beside(bed, v, int(side), 0.03) is not None:
+                    break
+
+
+def tidy(lay: Layout) -> None:
+    """Give double beds their nightstand (``_complete``), take out the first-tier
+    pieces a robot driving in from a door cannot reach (see
+    ``design_rules.access.front_reachable``), then, until none is left, those outside the
+    group they belong to (a chair at no table, a coffee table nobody sits at)."""
+    _complete(lay)
+    for obj in access.unreachable(lay.scene):
+        lay.remove(obj)
+    while True:
+        loners = [o for o in lay.first_tier() if not _belongs(lay, o)]
+        if not loners:
+            return
+        for obj in loners:
+            lay.remove(obj)

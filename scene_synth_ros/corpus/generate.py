@@ -11,16 +11,22 @@ from typing import Iterator
 import numpy as np
 
 from ..categories import CATEGORIES, ROOM_TYPES, resolve_room_type
+from ..evaluation import design_rules
 from ..geometry import check_scene
 from ..parallel import process_pool
 from ..scene import Room, Scene
-from .furnish import draw_plan, pick_variant, place_first_tier, place_second_tier
+from .furnish import draw_plan, pick_variant, place_first_tier, place_second_tier, tidy
 from .layout import Layout
 from .shell import sample_shell
 
 CALIBRATION_FILE = Path(__file__).with_name('calibration.json')
 CIRCULATION = 2.3        # floor area per m^2 of furniture footprint a room is given, at least
 MAX_ATTEMPTS = 8
+# The design rules every corpus room keeps (``evaluation.design_rules``), but two that the
+# paper's table itself bounds: it has fewer seats than desks and dressing tables in bedrooms,
+# and fewer coffee tables and TV stands than sofas in offices.
+TABLE_BOUND = ('desk_has_seat', 'sofa_faces_table_or_tv')
+KEPT_RULES = tuple(r for r in design_rules.rules() if r.name not in TABLE_BOUND)
 
 
 @lru_cache(maxsize=None)
@@ -49,11 +55,14 @@ def room_rng(room_type: str, seed: int, index: int) -> np.random.SeedSequence:
 
 def generate_room(room_type: str, seed: int = 0, index: int = 0,
                   calibration: dict[str, float] | None = None) -> Scene:
-    """A furnished room that passes every check of ``geometry.check_scene``."""
+    """A furnished room that passes every check of ``geometry.check_scene`` and keeps every
+    rule of ``KEPT_RULES`` (unless none of ``MAX_ATTEMPTS`` attempts does: then the first
+    valid one)."""
     room_type = resolve_room_type(room_type)
     if calibration is None:
         calibration = load_calibration().get(room_type, {})
     seeds = room_rng(room_type, seed, index).spawn(MAX_ATTEMPTS)
+    valid = None
     for attempt, ss in enumerate(seeds):
         rng = np.random.default_rng(ss)
         plan = draw_plan(room_type, rng, calibration)
@@ -69,13 +78,21 @@ def generate_room(room_type: str, seed: int = 0, index: int = 0,
                         key=lambda cv: -cv[1].width * cv[1].depth)
         for category, variant in first:
             place_first_tier(lay, category, variant)
+        tidy(lay)
         for category, variant in second:
             place_second_tier(lay, category, variant)
         scene = lay.scene
         if attempt:
             scene.meta['attempt'] = attempt
         if check_scene(scene).ok:
-            return scene
+            # A room a designer would send back (a rule broken) makes way for the next
+            # attempt; only if every attempt is sent back is the first valid one kept.
+            if not design_rules.broken(scene, KEPT_RULES):
+                return scene
+            if valid is None:
+                valid = scene
+    if valid is not None:
+        return valid
     raise RuntimeError(f'could not generate a valid {room_type} for seed {seed}, '
                        f'index {index} in {MAX_ATTEMPTS} attempts')
 

@@ -1,4 +1,5 @@
-"""The placement engine of the procedural corpus: where an object may go, and the ways an
+"""The placement engine of the procedural corpus: where an object may go (off the others,
+the doors, the windows and the floor they keep clear, see ``clearance``), and the ways an
 interior designer puts one there (against a wall, beside, facing, in a corner, on top)."""
 from __future__ import annotations
 
@@ -10,10 +11,15 @@ from shapely.geometry import LineString, Polygon
 from shapely.prepared import prep
 
 from ..catalog import ModelVariant
+from ..evaluation.design_rules.walls import WINDOW_ZONE_DEPTH
 from ..geometry import MIN_SUPPORT, door_zone, doors_connected, shrunk_footprint, support_fraction
 from ..scene import PlacedObject, Room, Scene, Wall, rotation
+from .clearance import Zone, zones
 
 TOUCH = 0.002           # footprints may touch: 2 mm of numerical slack
+# Furniture taller than a window's sill keeps this far from the glass: the design rule's zone
+# (``windows_clear``) and 10 cm more, so that curtains draw and the window opens.
+WINDOW_CLEARANCE = WINDOW_ZONE_DEPTH + 0.10
 
 
 def wrap_half_open(yaw: float) -> float:
@@ -41,12 +47,14 @@ class Layout:
             b = np.asarray(w.position) + wall.direction * w.width / 2
             self._windows.append((LineString([a, b]), w.sill))
         self._first: list[tuple[PlacedObject, Polygon]] = []
+        self._zones: list[Zone] = []      # floor reserved by the pieces placed (``clearance``)
         self.seated: set[str] = set()     # ids of the desks, tables, pianos given a seat
 
     # ---- the rules --------------------------------------------------------------------
     def fits(self, obj: PlacedObject) -> bool:
         """A first-tier object stays on the floor, off the door zones, off the other
-        objects, and (if taller than a window sill) away from the window."""
+        objects and the floor they keep clear, (if taller than a window sill) away from the
+        window, and where the floor it needs kept clear is free."""
         fp = obj.footprint()
         if not self._floor.contains(fp):
             return False
@@ -57,10 +65,43 @@ class Layout:
             others = [p for _, p in self._first]
             if shapely.intersects(inner, others).any():
                 return False
+        kept = [z.polygon for z in self._zones if obj.category not in z.allowed]
+        if kept and shapely.intersects(inner, kept).any():
+            return False
         for line, sill in self._windows:
-            if obj.height > sill - 0.05 and fp.distance(line) < 0.08:
+            if obj.height > sill - 0.05 and fp.distance(line) < WINDOW_CLEARANCE:
                 return False
-        return True
+        return self.claim(obj) is not None
+
+    def claim(self, obj: PlacedObject) -> list[Zone] | None:
+        """The zones ``obj`` would reserve: the first free alternative of each of its needs
+        (``clearance.zones``); None when a need has no free alternative."""
+        chosen = []
+        for need in zones(obj):
+            for zone in need:
+                if self._free(zone, obj.category):
+                    chosen.append(zone)
+                    break
+            else:
+                return None
+        return chosen
+
+    def _free(self, zone: Zone, category: str) -> bool:
+        if not self._floor.contains(zone.polygon):
+            return False
+        # Floor kept for a piece to come (a seat, a nightstand) is not also floor to keep
+        # empty, the two would exclude each other; but for the piece it is kept for.
+        spots = [z.polygon for z in self._zones
+                 if (z.allowed or zone.allowed) and category not in z.allowed]
+        if spots and shapely.intersects(zone.polygon.buffer(-TOUCH), spots).any():
+            return False
+        if zone.walls_only:
+            return True
+        if zone.allowed and any(z.intersects(zone.polygon) for z in self._door_zones):
+            return False
+        others = [shrunk_footprint(o, TOUCH) for o, _ in self._first
+                  if o.category not in zone.allowed and o.id != zone.owner]
+        return not (others and shapely.intersects(zone.polygon, others).any())
 
     def keeps_path(self) -> bool:
         """Every door can still be reached from every other for the reference robot."""
@@ -68,8 +109,10 @@ class Layout:
 
     def add(self, obj: PlacedObject, check_path: bool = True) -> bool:
         """Add a first-tier object that ``fits``; undone if it cuts the path between doors."""
+        kept = self.claim(obj)
         self.scene.objects.append(obj)
         self._first.append((obj, obj.footprint()))
+        self._zones += kept or []
         if check_path and not self.keeps_path():
             self.remove(obj)
             return False
@@ -80,6 +123,7 @@ class Layout:
             self.scene.objects.remove(child)
         self.scene.objects.remove(obj)
         self._first = [(o, p) for o, p in self._first if o is not obj]
+        self._zones = [z for z in self._zones if z.owner != obj.id]
 
     def first_tier(self, *categories: str) -> list[PlacedObject]:
         return [o for o, _ in self._first if not categories or o.category in categories]

@@ -14,6 +14,13 @@ with ``data`` (the rooms compared), ``perturb`` (the perturbed-corpus baseline),
 ``figures``, ``report``, ``paper`` (the paper's figures) and ``run`` (``EvalConfig`` and
 ``run_evaluation``, which ``scene-synth evaluate`` calls).
 """
-from .run import EvalConfig, EvaluationError, run_evaluation
-
 __all__ = ['EvalConfig', 'EvaluationError', 'run_evaluation']
+
+
+def __getattr__(name: str):
+    # Imported on first use, not with the package: the corpus furnishes rooms by the design
+    # rules (``design_rules``), and ``run`` imports the corpus and torch.
+    if name in __all__:
+        from . import run
+        return getattr(run, name)
+    raise AttributeError(f'module {__name__!r} has no attribute {name!r}')

@@ -96,6 +96,11 @@ def measure(scene: Scene, selected: Sequence[Rule] | None = None) -> dict[str, O
     return {r.name: r.measure(scene) for r in (selected or rules())}
 
 
+def broken(scene: Scene, selected: Sequence[Rule] | None = None) -> list[str]:
+    """The names of the rules the room breaks in at least one case."""
+    return [name for name, (kept, cases) in measure(scene, selected).items() if kept < cases]
+
+
 def totals(rows: Iterable[dict[str, Outcome]], selected: Sequence[Rule]) -> dict[str, Rate]:
     """Every selected rule's rate from per-room outcomes (``measure`` of each room)."""
     kept = dict.fromkeys((r.name for r in selected), 0)
