@@ -3,7 +3,8 @@
 Objects are inserted one at a time, each in the paper's steps. Next Object Category: the
 category module draws the next category, or STOP. Object Location: the location module gives
 a distribution over the room for it, masked to the floor (or, for a second-tier category, to
-the surfaces observed to support it) and tempered, and locations are drawn from it. Object
+the surfaces observed to support it) and tempered, and locations are drawn from it (each
+put where the network's per-pixel offset says the centroid is, in bundles that have one). Object
 Orientation: at each location the orientation module draws a facing, snapped to the room's
 axes when its classifier says so. Object Dimensions: the dimensions module draws a
 footprint. Object Insertion: the catalog model nearest that footprint is placed, preferring
@@ -313,17 +314,19 @@ class Synthesizer:
         with ctx.timed('category'):
             category_logits = ctx.bundle.networks['category'](image, counts)[0]
         allowed = self._allowed_categories(ctx, scene, allow_stop)
-        location_logits = None      # computed for the first category that is not STOP
+        location = None      # (logits, offsets), for the first category that is not STOP
         for _ in range(self.config.category_attempts):
             if not bool(allowed.any()):
                 break
             c = self._next_category(ctx, category_logits, allowed)
             if c == len(ctx.spec.names):         # the index after the categories: STOP
                 return None, 'stop'
-            if location_logits is None:
+            if location is None:
                 with ctx.timed('location'):
-                    location_logits = ctx.bundle.networks['location'](image)[0]
-            obj = self._insert_category(ctx, scene, c, location_logits, small)
+                    logits, offsets = ctx.bundle.networks['location'].predict(image)
+                    location = (logits[0], None if offsets is None
+                                else offsets[0].float().cpu().numpy())
+            obj = self._insert_category(ctx, scene, c, location, small)
             if obj is not None:
                 return obj, 'placed'
             allowed[c] = False
@@ -369,7 +372,7 @@ class Synthesizer:
         return int(ctx.rng.choice(len(p), p=p / p.sum()))
 
     def _insert_category(self, ctx: _Context, scene: Scene, c: int,
-                         location_logits: torch.Tensor, small: np.ndarray
+                         location: tuple[torch.Tensor, np.ndarray | None], small: np.ndarray
                          ) -> PlacedObject | None:
         """An object of category ``c``: locations drawn from the masked, tempered location
         distribution (paper: Object Location), at each an orientation (Object Orientation)
@@ -378,6 +381,7 @@ class Synthesizer:
         and dimensions modules see them as one batch."""
         cfg = self.config
         category = ctx.spec.names[c]
+        location_logits, offsets = location
         with ctx.timed('location'):
             p = location_distribution(location_logits, c, self._mask(ctx, category, small),
                                       cfg.location_temperature)
@@ -388,7 +392,7 @@ class Synthesizer:
             n = min(cfg.location_batch, cfg.location_samples - tried)
             tried += n
             with ctx.timed('location'):
-                points = ctx.grid.pixel_to_world(sample_pixel(p, ctx.rng, n))
+                points = ctx.grid.pixel_to_world(sample_pixel(p, ctx.rng, n, offsets))
             yaws = self._orientation(ctx, scene, c, points)
             dims = self._dimensions(ctx, scene, c, points, yaws)
             with ctx.timed('insertion'):

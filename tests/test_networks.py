@@ -114,7 +114,7 @@ def test_location_target_marks_placeable_centroids(rooms):
     kept = [o for o in scene.first_tier if o.id != child.support][:1]
     removed = [o for o in scene.objects if o not in kept]
     frame = Frame.for_room(scene.room, 64)
-    target = src.location_target(frame, placeable(removed, kept))
+    target, _ = src.location_target(frame, placeable(removed, kept))
     labels = set(np.unique(target)) - {0}
     expect = {1 + src.index[o.category] for o in placeable(removed, kept)}
     assert labels == expect
@@ -131,9 +131,53 @@ def test_location_target_radius(rooms):
     i, j = frame.world_to_pixel(obj.position[:2])
     for r in (0, 1, 2):
         src = ExampleSource('bedroom', rooms[:6], 64, 64, augment=False, target_radius=r)
-        target = src.location_target(frame, [obj])
+        target, offset = src.location_target(frame, [obj])
         assert (target > 0).sum() == (2 * r + 1) ** 2
         assert (target[i - r:i + r + 1, j - r:j + r + 1] == 1 + src.index[obj.category]).all()
+        # every marked pixel's offset points at the centroid's continuous pixel coordinates
+        rows, cols = np.nonzero(target)
+        centroid = frame.world_to_pixel(obj.position[:2], continuous=True)
+        assert np.allclose(np.stack([rows, cols], -1) + offset[:, rows, cols].T, centroid,
+                           atol=1e-5)
+        assert not offset[:, target == 0].any()
+        assert np.abs(offset).max() <= r + 0.5 + 1e-6
+
+
+def test_offsets_put_sampled_locations_on_the_centroid(rooms):
+    src = ExampleSource('bedroom', rooms[:6], 64, 64, augment=False, target_radius=1)
+    scene = rooms[0]
+    frame = Frame.for_room(scene.room, 64)
+    obj = scene.first_tier[0]
+    target, offset = src.location_target(frame, [obj])
+    p = (target > 0).astype(float)
+    pts = sample_pixel(p / p.sum(), np.random.default_rng(0), 50, offset)
+    centroid = frame.world_to_pixel(obj.position[:2], continuous=True)
+    assert np.allclose(pts, centroid, atol=1e-5)
+    # without offsets a draw lands anywhere in the 3 x 3 block
+    loose = sample_pixel(p / p.sum(), np.random.default_rng(0), 50)
+    assert np.abs(loose - centroid).max() > 0.5
+
+
+def test_the_offset_head_and_its_loss():
+    from dataclasses import replace
+
+    from scene_synth_ros.networks.location import LocationModel, offset_loss
+    cfg = PipelineConfig.from_yaml(config_dir() / 'compact.yaml').model
+    plain, with_offsets = (LocationModel(5, 7, replace(cfg, location_offsets=f))
+                           for f in (False, True))
+    image = torch.zeros(2, 5, cfg.resolution, cfg.resolution)
+    n = cfg.location_resolution
+    assert plain.predict(image)[1] is None
+    logits, offsets = with_offsets.eval().predict(image)
+    assert logits.shape == (2, 8, n, n) and offsets.shape == (2, 2, n, n)
+    assert with_offsets(image).shape == logits.shape
+    target = torch.zeros(2, 2, n, n)
+    marked = torch.zeros(2, n, n, dtype=torch.bool)
+    marked[0, 3, 4] = True
+    target[0, :, 3, 4] = torch.tensor([0.5, -1.0])
+    pred = torch.zeros(2, 2, n, n)
+    assert float(offset_loss(pred, target, marked)) == pytest.approx(0.75)
+    assert float(offset_loss(pred, target, torch.zeros_like(marked))) == 0.0
 
 
 def test_network_shapes_and_seeded_initialisation():

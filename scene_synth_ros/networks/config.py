@@ -40,6 +40,11 @@ class ModelConfig:
     # bottleneck of a 256 px input; a compact 64 px encoder ends at 2 x 2, from which alone
     # the decoder cannot place anything finer than a quarter of the room.
     location_skips: bool = True
+    # A per-pixel offset to the centroid, regressed beside the heat map (as CenterNet does):
+    # a location drawn from a 64 px grid is then put where the object's centre is, not
+    # anywhere in its pixel or the target's block, which a wall or a partner 10 cm away needs
+    # (``benchmarks/location_precision.py``). Off in bundles made before it existed.
+    location_offsets: bool = False
     local_encoder: EncoderConfig = field(
         default_factory=lambda: EncoderConfig(blocks=(1, 1, 1, 1)))
     count_features: int = 64       # width of the bag-of-categories MLP

@@ -137,21 +137,29 @@ class ExampleSource:
         kept, removed = order[:k], order[k:]
         frame = Frame.for_room(scene.room, self.resolution)
         image = self.renderer.render(Scene(scene.room, kept), frame)
-        target = self.location_target(frame, placeable(removed, kept))
-        return image, target
+        target, offset = self.location_target(frame, placeable(removed, kept))
+        return image, target, offset
 
-    def location_target(self, frame: Frame, objects) -> np.ndarray:
+    def location_target(self, frame: Frame, objects) -> tuple[np.ndarray, np.ndarray]:
         """Per-pixel labels on the location grid: 0, or 1 + the category of an object whose
         centroid is within ``target_radius`` pixels (0: the centroid's pixel alone, as in the
-        paper; larger radii give a sparse target more positive pixels to learn from)."""
+        paper; larger radii give a sparse target more positive pixels to learn from); and
+        (2 x L x L) the offset from each labelled pixel's centre to that centroid, in pixels
+        (row, col; 0 elsewhere)."""
         n, r = self.location_resolution, self.target_radius
         out = np.zeros((n, n), dtype=np.int64)
+        offset = np.zeros((2, n, n), dtype=np.float32)
         grid = Frame(frame.centre, frame.yaw, frame.extent, n)
+        rows, cols = np.mgrid[0:n, 0:n]
         for o in objects:
             i, j = grid.world_to_pixel(o.position[:2])
             if 0 <= i < n and 0 <= j < n:
-                out[max(i - r, 0):i + r + 1, max(j - r, 0):j + r + 1] = 1 + self.index[o.category]
-        return out
+                block = np.s_[max(i - r, 0):i + r + 1, max(j - r, 0):j + r + 1]
+                out[block] = 1 + self.index[o.category]
+                ci, cj = grid.world_to_pixel(o.position[:2], continuous=True)
+                offset[0][block] = ci - rows[block]
+                offset[1][block] = cj - cols[block]
+        return out, offset
 
     def _target_object(self, rng):
         """A partial scene and one object that could be inserted into it next."""
@@ -185,7 +193,8 @@ class ExampleSource:
                     'target': torch.tensor([e[2] for e in ex])}
         if module == 'location':
             ex = [self.location_example(rng) for _ in range(size)]
-            return {'image': _stack(e[0] for e in ex), 'target': _stack(e[1] for e in ex)}
+            return {'image': _stack(e[0] for e in ex), 'target': _stack(e[1] for e in ex),
+                    'offset': _stack(e[2] for e in ex)}
         if module in ('orientation', 'snap'):
             ex = [self.orientation_example(rng) for _ in range(size)]
             theta = torch.tensor([e[2] for e in ex], dtype=torch.float32)

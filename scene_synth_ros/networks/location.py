@@ -10,12 +10,16 @@ from torch import nn
 from .blocks import ResNetEncoder, UpBlock
 from .config import ModelConfig
 
+MAX_OFFSET = 2.0     # pixels: a target block's radius (1 in the shipped config) and a half
+
 
 class LocationModel(nn.Module):
     """ResNet-34-style encoder and a decoder of nearest-neighbour upsampling + 3x3
     convolutions to ``(C + 1) x L x L`` logits (L = ``location_resolution``). Channel 0 is
     "no object centred here", channel ``1 + c`` category ``c``. Dropout before and after the
-    encoder and before the last 1x1 convolution, as in the paper."""
+    encoder and before the last 1x1 convolution, as in the paper. With
+    ``location_offsets`` a second 1x1 convolution gives ``2 x L x L`` offsets: from each
+    pixel's centre to the centroid of the object marked there, in pixels (row, col)."""
 
     def __init__(self, in_channels: int, num_categories: int, cfg: ModelConfig):
         super().__init__()
@@ -46,6 +50,8 @@ class LocationModel(nn.Module):
         p = cfg.location_dropout
         self.drop_in, self.drop_mid, self.drop_out = nn.Dropout(p), nn.Dropout(p), nn.Dropout(p)
         self.final = nn.Conv2d(cin, num_categories + 1, 1)
+        # Made after ``final`` so that the other layers start from the same weights either way.
+        self.offset = nn.Conv2d(cin, 2, 1) if cfg.location_offsets else None
 
     def _feature_sizes(self, resolution: int) -> list[int]:
         with torch.no_grad():
@@ -57,6 +63,10 @@ class LocationModel(nn.Module):
         return [f.shape[-1] for f in feats]
 
     def forward(self, image: torch.Tensor) -> torch.Tensor:
+        return self.predict(image)[0]
+
+    def predict(self, image: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor | None]:
+        """The logits and, with ``location_offsets``, the offsets (else None)."""
         image = self.drop_in(image)
         if self.skips:
             feats = self.encoder.features(image)
@@ -65,7 +75,8 @@ class LocationModel(nn.Module):
             feats, x = [], self.drop_mid(self.encoder(image))
         for layer, k in zip(self.decoder, self.skip_at, strict=True):
             x = layer(x, feats[k] if k is not None else None)
-        return self.final(self.drop_out(x))
+        x = self.drop_out(x)
+        return self.final(x), (self.offset(x) if self.offset is not None else None)
 
 
 def location_loss(logits: torch.Tensor, target: torch.Tensor, empty_weight: float
@@ -75,6 +86,16 @@ def location_loss(logits: torch.Tensor, target: torch.Tensor, empty_weight: floa
     weight = torch.ones(logits.shape[1], device=logits.device)
     weight[0] = empty_weight
     return nn.functional.cross_entropy(logits, target, weight=weight)
+
+
+def offset_loss(offsets: torch.Tensor, target: torch.Tensor, marked: torch.Tensor
+                ) -> torch.Tensor:
+    """Mean absolute error of the offsets (B x 2 x L x L, pixels) on the ``marked`` pixels
+    (B x L x L, those of an object's target); 0 when none is marked."""
+    mask = marked.unsqueeze(1).expand_as(offsets)
+    if not bool(mask.any()):
+        return offsets.sum() * 0.0
+    return (offsets - target).abs()[mask].mean()
 
 
 def location_distribution(logits: torch.Tensor, category: int, mask: np.ndarray,
@@ -96,10 +117,16 @@ def location_distribution(logits: torch.Tensor, category: int, mask: np.ndarray,
     return p / p.sum()
 
 
-def sample_pixel(p: np.ndarray, rng: np.random.Generator, n: int = 1) -> np.ndarray:
+def sample_pixel(p: np.ndarray, rng: np.random.Generator, n: int = 1,
+                 offsets: np.ndarray | None = None) -> np.ndarray:
     """``n`` (row, col) pixels drawn from the grid distribution ``p`` (with replacement),
-    each with a uniform offset inside its pixel: continuous coordinates."""
+    as continuous coordinates: each moved by the network's ``offsets`` (2 x L x L) at that
+    pixel, or without them by a uniform offset inside its pixel."""
     flat = rng.choice(p.size, size=n, p=p.ravel())
     rows, cols = np.divmod(flat, p.shape[1])
-    jitter = rng.uniform(-0.5, 0.5, size=(n, 2))
-    return np.stack([rows, cols], -1) + jitter
+    if offsets is not None:
+        # At most the target's reach from the pixel: a wild offset must not leave the block.
+        shift = np.clip(offsets[:, rows, cols].T, -MAX_OFFSET, MAX_OFFSET)
+    else:
+        shift = rng.uniform(-0.5, 0.5, size=(n, 2))
+    return np.stack([rows, cols], -1) + shift

@@ -27,7 +27,7 @@ from .bundle import Bundle, build_networks, save_bundle
 from .config import ModuleSchedule, PipelineConfig, resolve_device
 from .dimensions import Discriminator, box_sdf, dimensions_elbo
 from .examples import ExampleSource
-from .location import location_loss
+from .location import location_loss, offset_loss
 from .orientation import orientation_elbo, orientation_target
 
 VAL_BATCH = 64
@@ -85,8 +85,14 @@ def batch_loss(module: str, net: nn.Module, batch: dict, cfg: PipelineConfig, de
                       'top1': (top5[:, 0] == b['target']).float().mean().item(),
                       'top5': (top5 == b['target'][:, None]).any(1).float().mean().item()}
     if module == 'location':
-        loss = location_loss(net(b['image']), b['target'], t.empty_weight)
-        return loss, {'loss': loss.item()}
+        logits, offsets = net.predict(b['image'])
+        loss = location_loss(logits, b['target'], t.empty_weight)
+        metrics = {'loss': loss.item()}        # the cross-entropy of the component table
+        if offsets is not None:
+            err = offset_loss(offsets, b['offset'], b['target'] > 0)
+            metrics['offset_error'] = err.item()
+            loss = loss + err
+        return loss, metrics
     if module == 'orientation':
         target = orientation_target(b['theta'])
         out, mu, logvar = net(b['image'], b['category'], target)
