@@ -1,13 +1,14 @@
 """Design rules in corpus rooms and in synthesized rooms, side by side, per room type.
 
     .venv/bin/python benchmarks/design_rules.py [-n 150] [--room-type all] [--workers 2]
+                                                [--weights-dir DIR]
 
 Corpus rooms are held-out rooms (seed ``corpus.HELDOUT_SEED``); synthesized rooms are the same
-empty shells furnished by the shipped weights, room ``i`` with synthesis seed ``i``. Each cell
-is the rate at which a rule is kept (cases in brackets), then synthesized minus corpus in
-percentage points and the p-value of the test of equal proportions. A rule meets issue 11's
-target when the difference is within 5 points (3 for wall contact, floating pieces, windows
-and reachability).
+empty shells furnished by the shipped weights (or those of ``--weights-dir``), room ``i`` with
+synthesis seed ``i``. Each cell is the rate at which a rule is kept (cases in brackets), then
+synthesized minus corpus in percentage points and the p-value of the test of equal
+proportions. A rule meets issue 11's target when the difference is within 5 points (3 for
+wall contact, floating pieces, windows and reachability).
 """
 import argparse
 from pathlib import Path
@@ -26,12 +27,12 @@ TIGHT = ('wall_contact', 'floating', 'window', 'reachable')   # 3-point targets,
 _synth = None
 
 
-def _init_worker():
+def _init_worker(weights):
     global _synth
     import torch
     torch.set_num_threads(1)
     from scene_synth_ros.synth import Synthesizer
-    _synth = Synthesizer()
+    _synth = Synthesizer(weights)
 
 
 def _synthesize(job):
@@ -53,10 +54,11 @@ def main() -> int:
     ap.add_argument('-n', type=int, default=150, help='rooms per room type and source')
     ap.add_argument('--room-type', default='all')
     ap.add_argument('--workers', type=int, default=2)
+    ap.add_argument('--weights-dir', default=None, help="default: the package's weights/")
     args = ap.parse_args()
     room_types = ROOM_TYPES if args.room_type == 'all' else (args.room_type,)
     jobs = [(rt, i) for rt in room_types for i in range(args.n)]
-    with process_pool(args.workers, _init_worker) as pool:
+    with process_pool(args.workers, _init_worker, (args.weights_dir,)) as pool:
         synthesized = pool.map(_synthesize, jobs, chunksize=4)
     print(f'design rules kept: held-out corpus vs synthesized, {args.n} rooms per type '
           f'(held-out shells, synthesis seeds 0..{args.n - 1})')
