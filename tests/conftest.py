@@ -23,7 +23,8 @@ def tiny_config(steps: int = 4) -> PipelineConfig:
         name='tiny', device='cpu',
         model=ModelConfig(category_encoder=enc, location_encoder=enc, local_encoder=enc,
                           location_decoder_widths=(16, 8, 8), hidden=32, latent=4,
-                          count_features=16, discriminator_widths=(8, 16)),
+                          count_features=16, discriminator_widths=(8, 16),
+                          location_offsets=True),
         train=TrainConfig(train_rooms=30, val_rooms=8, val_examples=16, val_every=2,
                           checkpoint_every=2, threads=1, category=sched, location=sched,
                           orientation=sched, snap=sched, dimensions=sched))
