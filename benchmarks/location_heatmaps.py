@@ -96,7 +96,7 @@ def main() -> int:
                 p, s = share(synth, scene, piece, partner, rt)
                 shares.append(s)
                 if p is not None and len([e for e in examples if e[0] == rt]) < 4:
-                    examples.append((rt, scene, piece, p, s))
+                    examples.append((rt, piece, p, s))
         print(f'{rt:8s} {CASES[rt][0]:13s} at its {CASES[rt][1][0]}: mean share '
               f'{np.mean(shares):.3f} over {len(shares)} cases (median {np.median(shares):.3f})')
     if args.figure:
@@ -104,7 +104,7 @@ def main() -> int:
         matplotlib.use('Agg')
         import matplotlib.pyplot as plt
         fig, axes = plt.subplots(2, 4, figsize=(12, 6.4))
-        for ax, (rt, scene, piece, p, s) in zip(axes.ravel(), examples, strict=False):
+        for ax, (rt, piece, p, s) in zip(axes.ravel(), examples, strict=False):
             ax.imshow(p, cmap='magma')
             ax.set_title(f'{rt}: {piece.category}, share {s:.2f}', fontsize=9)
             ax.axis('off')
