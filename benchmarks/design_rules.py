@@ -1,7 +1,7 @@
 """Design rules in corpus rooms and in synthesized rooms, side by side, per room type.
 
     .venv/bin/python benchmarks/design_rules.py [-n 150] [--room-type all] [--workers 2]
-                                                [--weights-dir DIR]
+                                                [--weights-dir DIR] [--uniform-draws]
 
 Corpus rooms are held-out rooms (seed ``corpus.HELDOUT_SEED``); synthesized rooms are the same
 empty shells furnished by the shipped weights (or those of ``--weights-dir``), room ``i`` with
@@ -27,12 +27,12 @@ TIGHT = ('wall_contact', 'floating', 'window', 'reachable')   # 3-point targets,
 _synth = None
 
 
-def _init_worker(weights):
+def _init_worker(weights, location_mode):
     global _synth
     import torch
     torch.set_num_threads(1)
-    from scene_synth_ros.synth import Synthesizer
-    _synth = Synthesizer(weights)
+    from scene_synth_ros.synth import SynthConfig, Synthesizer
+    _synth = Synthesizer(weights, SynthConfig(location_mode=location_mode))
 
 
 def _synthesize(job):
@@ -55,10 +55,14 @@ def main() -> int:
     ap.add_argument('--room-type', default='all')
     ap.add_argument('--workers', type=int, default=2)
     ap.add_argument('--weights-dir', default=None, help="default: the package's weights/")
+    ap.add_argument('--uniform-draws', action='store_true',
+                    help='locations anywhere in the drawn pixel, not at the blob centre '
+                         '(SynthConfig.location_mode off)')
     args = ap.parse_args()
     room_types = ROOM_TYPES if args.room_type == 'all' else (args.room_type,)
     jobs = [(rt, i) for rt in room_types for i in range(args.n)]
-    with process_pool(args.workers, _init_worker, (args.weights_dir,)) as pool:
+    with process_pool(args.workers, _init_worker,
+                      (args.weights_dir, not args.uniform_draws)) as pool:
         synthesized = pool.map(_synthesize, jobs, chunksize=4)
     print(f'design rules kept: held-out corpus vs synthesized, {args.n} rooms per type '
           f'(held-out shells, synthesis seeds 0..{args.n - 1})')

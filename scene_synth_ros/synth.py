@@ -133,6 +133,10 @@ class SynthConfig:
     max_objects: int = 30               # hard cap on objects in a room
     location_samples: int = 12          # locations tried for one category draw...
     location_batch: int = 4             # ...drawn and decoded this many at a time
+    # Each drawn location moved to the centre of the blob of the distribution it fell in
+    # (``networks.location.blob_centre``): the networks answer a centroid with a blob as wide
+    # as their training target, and a draw anywhere in it misses a wall by up to a pixel.
+    location_mode: bool = True
     models_per_location: int = 3        # catalog models tried at one location
     category_attempts: int = 4          # category draws per insertion before giving up
     fit_slack: float = 0.15             # log-footprint slack within which co-occurrence decides
@@ -392,7 +396,8 @@ class Synthesizer:
             n = min(cfg.location_batch, cfg.location_samples - tried)
             tried += n
             with ctx.timed('location'):
-                points = ctx.grid.pixel_to_world(sample_pixel(p, ctx.rng, n, offsets))
+                points = ctx.grid.pixel_to_world(sample_pixel(p, ctx.rng, n, offsets,
+                                                                cfg.location_mode))
             yaws = self._orientation(ctx, scene, c, points)
             dims = self._dimensions(ctx, scene, c, points, yaws)
             with ctx.timed('insertion'):

@@ -158,6 +158,27 @@ def test_offsets_put_sampled_locations_on_the_centroid(rooms):
     assert np.abs(loose - centroid).max() > 0.5
 
 
+def test_draws_move_to_the_centre_of_their_blob():
+    from scene_synth_ros.networks.location import blob_centre
+    p = np.zeros((16, 16))
+    p[4:7, 9:12] = 1.0                      # a 3 x 3 blob centred on pixel (5, 10)
+    p[12, 2] = 0.5                          # a lone pixel elsewhere
+    p /= p.sum()
+    starts = np.array([[4, 9], [6, 11], [5, 10], [4, 11], [12, 2]], dtype=float)
+    assert np.allclose(blob_centre(p, starts), [[5, 10]] * 4 + [[12, 2]])
+    # a blob weighted to one side: its weighted centre, between pixels
+    q = np.zeros((16, 16))
+    q[5, 9:12] = [0.0, 1.0, 1.0]
+    assert np.allclose(blob_centre(q / q.sum(), np.array([[5.0, 10.0]])), [[5, 10.5]])
+    pts = sample_pixel(p, np.random.default_rng(1), 200, mode=True)
+    assert {tuple(np.round(x, 9)) for x in pts} <= {(5.0, 10.0), (12.0, 2.0)}
+    # with offsets, the offset at the blob's centre pixel says where in it the centroid is
+    offsets = np.zeros((2, 16, 16))
+    offsets[:, 5, 10] = (0.3, -0.2)
+    pts = sample_pixel(p, np.random.default_rng(1), 50, offsets, mode=True)
+    assert {tuple(np.round(x, 9)) for x in pts} <= {(5.3, 9.8), (12.0, 2.0)}
+
+
 def test_the_offset_head_and_its_loss():
     from dataclasses import replace
 

@@ -118,15 +118,55 @@ def location_distribution(logits: torch.Tensor, category: int, mask: np.ndarray,
 
 
 def sample_pixel(p: np.ndarray, rng: np.random.Generator, n: int = 1,
-                 offsets: np.ndarray | None = None) -> np.ndarray:
+                 offsets: np.ndarray | None = None, mode: bool = False) -> np.ndarray:
     """``n`` (row, col) pixels drawn from the grid distribution ``p`` (with replacement),
-    as continuous coordinates: each moved by the network's ``offsets`` (2 x L x L) at that
-    pixel, or without them by a uniform offset inside its pixel."""
+    as continuous coordinates. With ``mode`` each draw is first moved to the centre of the
+    blob it fell in (``blob_centre``). With the network's ``offsets`` (2 x L x L) the pixel
+    reached is then moved by the offset predicted there; without them, a draw that was not
+    moved to a blob centre is put anywhere inside its pixel, uniformly."""
     flat = rng.choice(p.size, size=n, p=p.ravel())
     rows, cols = np.divmod(flat, p.shape[1])
+    points = np.stack([rows, cols], -1).astype(np.float64)
+    if mode:
+        points = blob_centre(p, points)
     if offsets is not None:
+        at = np.clip(np.floor(points + 0.5), 0, p.shape[0] - 1).astype(int)
         # At most the target's reach from the pixel: a wild offset must not leave the block.
-        shift = np.clip(offsets[:, rows, cols].T, -MAX_OFFSET, MAX_OFFSET)
-    else:
-        shift = rng.uniform(-0.5, 0.5, size=(n, 2))
-    return np.stack([rows, cols], -1) + shift
+        shift = np.clip(offsets[:, at[:, 0], at[:, 1]].T, -MAX_OFFSET, MAX_OFFSET)
+        return at + shift
+    if mode:
+        return points
+    return points + rng.uniform(-0.5, 0.5, size=(n, 2))
+
+
+def blob_centre(p: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Each point moved to the centre of the blob of ``p`` it lies in: uphill to the pixel
+    whose 3 x 3 neighbourhood holds the most probability (the best match of a 3 x 3 block),
+    then to the probability-weighted mean of that neighbourhood.
+
+    A location module trained on a 3 x 3 target answers an object's centroid with a blob
+    about that wide, every pixel of it likely; a draw from the blob is up to a pixel off the
+    centroid (``benchmarks/location_precision.py``), the blob's centre is not."""
+    n = p.shape[0]
+    di, dj = (a.ravel() for a in np.meshgrid(np.arange(-1, 2), np.arange(-1, 2),
+                                              indexing='ij'))
+    pad = np.pad(p, 1)
+    box = sum(pad[1 + i:1 + i + n, 1 + j:1 + j + n] for i, j in zip(di, dj, strict=True))
+    box = np.pad(box, 1, constant_values=-1.0)
+    at = np.clip(np.floor(points + 0.5), 0, n - 1).astype(int)
+    k = np.arange(len(at))
+    for _ in range(2 * n):
+        values = box[at[:, :1] + di + 1, at[:, 1:] + dj + 1]          # (points, 9)
+        best = values.argmax(1)
+        climb = values[k, best] > values[:, 4]                        # 4: the pixel itself
+        if not climb.any():
+            break
+        at[climb] += np.stack([di[best], dj[best]], -1)[climb]
+    rows, cols = at[:, :1] + di, at[:, 1:] + dj
+    w = pad[rows + 1, cols + 1]
+    total = w.sum(1)
+    out = at.astype(np.float64)
+    some = total > 0
+    out[some, 0] = (w * rows).sum(1)[some] / total[some]
+    out[some, 1] = (w * cols).sum(1)[some] / total[some]
+    return out
