@@ -195,9 +195,12 @@ def test_quick_report_of_one_room_type_is_written_with_finite_numbers(cli, tmp_p
                     'Speed', 'Physical plausibility', 'Generalisation', 'Component metrics',
                     'Design rules', 'Gallery'):
         assert heading in index
-    for name in ('categories', 'similarity', 'gallery', 'rules_synthesized', 'rules_corpus'):
+    for name in ('categories', 'similarity', 'gallery', 'rules_synthesized'):
         png = out / f'{name}_bathroom.png'
         assert png.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n' and f'({png.name})' in index
+    # corpus bathrooms keep every design rule, so there is no worst offender to draw
+    assert not (out / 'rules_corpus_bathroom.png').exists()
+    assert 'bathroom corpus: no room breaks any rule.' in index
     saved = json.loads((out / 'results.json').read_text())
     assert finite_numbers(saved) == [] and finite_numbers(results) == []
     r = saved['room_types']['bathroom']

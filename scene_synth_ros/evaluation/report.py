@@ -341,6 +341,8 @@ def _design_rules(rts: dict, figure_dir: str) -> list[str]:
             fig = r['figures'].get(f'rules_{name}')
             if fig:
                 L += [f'![{rt} {name}: worst offenders]({_fig(figure_dir, fig)})', '']
+            else:
+                L += [f'{rt} {name}: no room breaks any rule.', '']
     return L
 
 
