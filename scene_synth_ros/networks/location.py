@@ -10,7 +10,7 @@ from torch import nn
 from .blocks import ResNetEncoder, UpBlock
 from .config import ModelConfig
 
-MAX_OFFSET = 2.0     # pixels: a target block's radius (1 in the shipped config) and a half
+MAX_OFFSET = 2.0     # pixels: a target block's radius (1 in compact.yaml) and a half
 
 
 class LocationModel(nn.Module):
