@@ -112,7 +112,7 @@ def zones(obj: PlacedObject) -> list[list[Zone]]:
             return [[Zone(_front(obj, depth, stretch, where), own) for where in (0, -1, 1)]]
         return [[Zone(_front(obj, depth), own)]]
     # Beside a bed the robot itself must pass, to the bed and to the nightstand's front:
-    # its width and as much again as slack (design guides ask 0.6-0.75 m there).
+    # its width and 20 cm of slack (design guides ask 0.6-0.75 m there).
     depth = BED_CLEARANCE + BED_SLACK
     if cat == 'double bed':
         # Room for a nightstand at the head of at least one side.
