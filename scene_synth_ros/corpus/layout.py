@@ -47,6 +47,7 @@ class Layout:
             b = np.asarray(w.position) + wall.direction * w.width / 2
             self._windows.append((LineString([a, b]), w.sill))
         self._first: list[tuple[PlacedObject, Polygon]] = []
+        self._shrunk: dict[str, Polygon] = {}   # first-tier footprints less TOUCH, by id
         self._zones: list[Zone] = []      # floor reserved by the pieces placed (``clearance``)
         self.seated: set[str] = set()     # ids of the desks, tables, pianos given a seat
 
@@ -55,23 +56,27 @@ class Layout:
         """A first-tier object stays on the floor, off the door zones, off the other
         objects and the floor they keep clear, (if taller than a window sill) away from the
         window, and where the floor it needs kept clear is free."""
+        return self._placement(obj) is not None
+
+    def _placement(self, obj: PlacedObject) -> list[Zone] | None:
+        """The zones ``obj`` would reserve where it ``fits``, else None."""
         fp = obj.footprint()
         if not self._floor.contains(fp):
-            return False
+            return None
         inner = shrunk_footprint(obj, TOUCH)
         if any(z.intersects(inner) for z in self._door_zones):
-            return False
+            return None
         if self._first:
             others = [p for _, p in self._first]
             if shapely.intersects(inner, others).any():
-                return False
+                return None
         kept = [z.polygon for z in self._zones if obj.category not in z.allowed]
         if kept and shapely.intersects(inner, kept).any():
-            return False
+            return None
         for line, sill in self._windows:
             if obj.height > sill - 0.05 and fp.distance(line) < WINDOW_CLEARANCE:
-                return False
-        return self.claim(obj) is not None
+                return None
+        return self.claim(obj)
 
     def claim(self, obj: PlacedObject) -> list[Zone] | None:
         """The zones ``obj`` would reserve: the first free alternative of each of its needs
@@ -99,7 +104,7 @@ class Layout:
             return True
         if zone.allowed and any(z.intersects(zone.polygon) for z in self._door_zones):
             return False
-        others = [shrunk_footprint(o, TOUCH) for o, _ in self._first
+        others = [self._shrunk[o.id] for o, _ in self._first
                   if o.category not in zone.allowed and o.id != zone.owner]
         return not (others and shapely.intersects(zone.polygon, others).any())
 
@@ -107,11 +112,14 @@ class Layout:
         """Every door can still be reached from every other for the reference robot."""
         return doors_connected(self.scene)
 
-    def add(self, obj: PlacedObject, check_path: bool = True) -> bool:
-        """Add a first-tier object that ``fits``; undone if it cuts the path between doors."""
-        kept = self.claim(obj)
+    def add(self, obj: PlacedObject, check_path: bool = True,
+            zones: list[Zone] | None = None) -> bool:
+        """Add a first-tier object that ``fits``, reserving ``zones`` (default: what it
+        claims); undone if it cuts the path between doors."""
+        kept = self.claim(obj) if zones is None else zones
         self.scene.objects.append(obj)
         self._first.append((obj, obj.footprint()))
+        self._shrunk[obj.id] = shrunk_footprint(obj, TOUCH)
         self._zones += kept or []
         if check_path and not self.keeps_path():
             self.remove(obj)
@@ -124,6 +132,7 @@ class Layout:
         self.scene.objects.remove(obj)
         self._first = [(o, p) for o, p in self._first if o is not obj]
         self._zones = [z for z in self._zones if z.owner != obj.id]
+        self._shrunk.pop(obj.id, None)
 
     def first_tier(self, *categories: str) -> list[PlacedObject]:
         return [o for o, _ in self._first if not categories or o.category in categories]
@@ -136,7 +145,8 @@ class Layout:
 
     def try_place(self, variant: ModelVariant, xy, yaw: float) -> PlacedObject | None:
         obj = self.make(variant, xy, yaw)
-        if self.fits(obj) and self.add(obj):
+        kept = self._placement(obj)
+        if kept is not None and self.add(obj, zones=kept):
             return obj
         return None
 
