@@ -299,8 +299,7 @@ def _rule_easy_chair(lay, v):
 
 
 def _has_seating(lay: Layout, table: PlacedObject) -> bool:
-    return any(groups.faces(s, table) and groups.within_reach(s, table, groups.LOUNGE_REACH)
-               for s in lay.first_tier(*groups.LOUNGE_SEATS))
+    return any(groups.lounges_at(s, table) for s in lay.first_tier(*groups.LOUNGE_SEATS))
 
 
 def _rule_floor_lamp(lay, v):
@@ -414,8 +413,7 @@ def _belongs(lay: Layout, obj: PlacedObject) -> bool:
     if obj.category == 'coffee table':
         return _has_seating(lay, obj)
     if obj.category == 'bidet':
-        return any(groups.within_reach(obj, t, groups.BIDET_GAP) and groups.on_one_line(obj, t)
-                   for t in lay.first_tier('toilet'))
+        return any(groups.beside_toilet(obj, t) for t in lay.first_tier('toilet'))
     return True
 
 

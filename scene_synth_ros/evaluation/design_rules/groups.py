@@ -233,6 +233,16 @@ def at_head_of(stand: PlacedObject, bed: PlacedObject) -> bool:
     return stand.footprint().distance(head_end) <= NIGHTSTAND_GAP
 
 
+def lounges_at(seat: PlacedObject, table: PlacedObject) -> bool:
+    """Whether lounge ``seat`` serves coffee ``table`` (see ``coffee_table_has_seating``)."""
+    return faces(seat, table) and within_reach(seat, table, LOUNGE_REACH)
+
+
+def beside_toilet(bidet: PlacedObject, toilet: PlacedObject) -> bool:
+    """Whether ``bidet`` stands by ``toilet`` on its wall line (see ``bidet_by_toilet``)."""
+    return within_reach(bidet, toilet, BIDET_GAP) and on_one_line(bidet, toilet)
+
+
 def back_middle(obj: PlacedObject) -> np.ndarray:
     """The middle of the object's back side."""
     return np.asarray(obj.position[:2]) - obj.front * obj.depth / 2
@@ -313,8 +323,7 @@ def double_bed_has_nightstand(scene: Scene) -> Outcome:
 def bidet_by_toilet(scene: Scene) -> Outcome:
     toilets = _first_tier(scene, ('toilet',))
     return _count(_first_tier(scene, ('bidet',)),
-                  lambda b: any(within_reach(b, t, BIDET_GAP) and on_one_line(b, t)
-                                for t in toilets))
+                  lambda b: any(beside_toilet(b, t) for t in toilets))
 
 
 def bath_in_corner(scene: Scene) -> Outcome:
@@ -333,8 +342,7 @@ def sofa_faces_table_or_tv(scene: Scene) -> Outcome:
 def coffee_table_has_seating(scene: Scene) -> Outcome:
     seats = _first_tier(scene, LOUNGE_SEATS)
     return _count(_first_tier(scene, ('coffee table',)),
-                  lambda t: any(faces(s, t) and within_reach(s, t, LOUNGE_REACH)
-                                for s in seats))
+                  lambda t: any(lounges_at(s, t) for s in seats))
 
 
 def tv_square_on_stand(scene: Scene) -> Outcome:
