@@ -3,8 +3,9 @@
 Objects are inserted one at a time, each in the paper's steps. Next Object Category: the
 category module draws the next category, or STOP. Object Location: the location module gives
 a distribution over the room for it, masked to the floor (or, for a second-tier category, to
-the surfaces observed to support it) and tempered, and locations are drawn from it (each
-put where the network's per-pixel offset says the centroid is, in bundles that have one). Object
+the surfaces observed to support it) and tempered, and locations are drawn from it, each
+moved to the centre of the blob it fell in (``SynthConfig.location_mode``) and, in bundles
+with offsets, by the offset predicted there. Object
 Orientation: at each location the orientation module draws a facing, snapped to the room's
 axes when its classifier says so. Object Dimensions: the dimensions module draws a
 footprint. Object Insertion: the catalog model nearest that footprint is placed, preferring
