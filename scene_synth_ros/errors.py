@@ -2,14 +2,53 @@
 
 Its message is one sentence saying what was wrong and where; every front end (command line,
 node, evaluation) reports it as that sentence, without a traceback, and goes on serving.
+Whatever the input, the sentence is one printable line of at most ``MAX_SENTENCE``
+characters that encodes as UTF-8: it goes into logs and onto /diagnostics, and an input
+quoted whole (a 7 MB string, a key that is a lone surrogate) must not flood them or make
+them fail.
 """
 from __future__ import annotations
 
 import math
 
+MAX_SENTENCE = 400     # characters in an error sentence
+MAX_QUOTE = 40         # characters of a user's value quoted inside one
+
+
+def sentence(text: object, limit: int = MAX_SENTENCE) -> str:
+    """``text`` as one bounded, printable line: whitespace runs become one space, other
+    unprintable characters (controls, lone surrogates) become U+FFFD, and a text longer
+    than ``limit`` keeps its start and ends with an ellipsis."""
+    s = str(text)
+    if len(s) > 4 * limit:            # never scan a huge text whole
+        s = s[:4 * limit]
+    out = []
+    space = False
+    for ch in s:
+        if ch.isspace():
+            if not space:
+                out.append(' ')
+            space = True
+            continue
+        space = False
+        out.append(ch if ch.isprintable() else '\ufffd')
+    line = ''.join(out).strip()
+    return line if len(line) <= limit else line[:limit - 1].rstrip() + '…'
+
+
+def quoted(value: object, limit: int = MAX_QUOTE) -> str:
+    """A user's value as a sentence quotes it: its repr, cut to ``limit`` characters."""
+    if isinstance(value, str) and len(value) > limit:
+        return repr(value[:limit]) + '…'
+    text = repr(value)
+    return text if len(text) <= limit else text[:limit - 1] + '…'
+
 
 class SceneSynthError(Exception):
-    """Bad input or an impossible request, described in one sentence."""
+    """Bad input or an impossible request, described in one sentence (``sentence``)."""
+
+    def __init__(self, message: object = '', *args):
+        super().__init__(sentence(message), *args)
 
 
 class UnknownRoomType(SceneSynthError, ValueError):
@@ -29,6 +68,8 @@ def number(x: float) -> str:
             return 'NaN'
         if math.isinf(x):
             return 'Infinity' if x > 0 else '-Infinity'
+    if abs(float(x)) >= 1e9:          # no hundred-digit renderings of huge inputs
+        return f'{float(x):.6g}'
     s = f'{float(x):.3f}'.rstrip('0').rstrip('.')
     return '0' if s in ('-0', '') else s
 

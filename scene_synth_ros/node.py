@@ -35,7 +35,7 @@ from std_msgs.msg import ColorRGBA, String
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker, MarkerArray
 
-from .errors import SceneSynthError
+from .errors import SceneSynthError, sentence
 from .markers import MeshCache, scene_markers
 from .ros_client import LATCHED, RELIABLE
 from .server import PARAMETERS, ConfigError, SceneServer, Served, ServerConfig, Status
@@ -84,7 +84,7 @@ class SceneSynthNode(Node):
             for name in PARAMETERS:
                 self.declare_parameter(name, getattr(defaults, name), _descriptor(name))
         except (InvalidParameterTypeException, InvalidParameterValueException) as e:
-            raise StartupError(' '.join(str(e).split())) from None
+            raise StartupError(str(e)) from None
         config = ServerConfig(**{n: self.get_parameter(n).value for n in PARAMETERS})
         try:
             self.server = SceneServer(config, self._publish_room, self._publish_diagnostics,
@@ -182,7 +182,16 @@ class SceneSynthNode(Node):
             pass
 
     def _log(self, level: str, text: str) -> None:
-        getattr(self.get_logger(), level)(text)
+        # One call per severity: rclpy keys a logger's settings by the calling line and
+        # refuses a second severity from the same line.
+        text = sentence(text)
+        logger = self.get_logger()
+        if level == 'error':
+            logger.error(text)
+        elif level == 'warn':
+            logger.warning(text)
+        else:
+            logger.info(text)
 
     def destroy_node(self):
         self.server.close()

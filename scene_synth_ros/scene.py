@@ -90,8 +90,12 @@ def ccw(points: Iterable[Iterable[float]]) -> tuple[tuple[float, float], ...]:
     pts = [(float(x), float(y)) for x, y in points]
     if len(pts) > 1 and pts[0] == pts[-1]:
         pts = pts[:-1]
+    # Relative to the first vertex: far from the origin the raw products cancel each other
+    # and the sum can lose its sign.
+    ox, oy = pts[0] if pts else (0.0, 0.0)
+    rel = [(x - ox, y - oy) for x, y in pts]
     area2 = sum(x0 * y1 - x1 * y0
-                for (x0, y0), (x1, y1) in zip(pts, pts[1:] + pts[:1], strict=True))
+                for (x0, y0), (x1, y1) in zip(rel, rel[1:] + rel[:1], strict=True))
     return tuple(pts if area2 >= 0 else pts[::-1])
 
 

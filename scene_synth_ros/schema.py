@@ -35,8 +35,9 @@ import shapely
 
 from . import catalog
 from .categories import CATEGORIES, ROOM_TYPES, RoomTypeSpec, resolve_room_type, room_spec
-from .errors import SceneSynthError, UnknownRoomType, number, with_article
+from .errors import SceneSynthError, UnknownRoomType, number, quoted, with_article
 from .files import write_atomic
+from .limits import LimitExceeded, check_tree, join, loads
 from .paths import schema_dir
 from .render import RoomDoesNotFit, room_frame_box
 from .scene import Opening, PlacedObject, Room, Scene, ccw
@@ -77,10 +78,7 @@ class SceneValidationError(SceneSynthError, ValueError):
 
 # ----------------------------------------------------------------------------- formatting
 
-def _join(prefix: str, key: str | int) -> str:
-    if isinstance(key, int):
-        return f'{prefix}[{key}]'
-    return f'{prefix}.{key}' if prefix else key
+_join = join
 
 
 def _path_of(prefix: str, parts: Iterable[str | int]) -> str:
@@ -141,18 +139,27 @@ def _plain(value: Any) -> Any:
     return value
 
 
-def _load(text_or_dict: Any) -> dict[str, Any]:
-    """The payload as a plain dict (the type of the top level is checked by the schema)."""
-    if isinstance(text_or_dict, (bytes, bytearray)):
+def _tree(value: Any) -> Any:
+    """``value`` as plain JSON values, once it is known to be within ``limits``."""
+    try:
+        check_tree(value)
+    except LimitExceeded as e:
+        raise SceneValidationError(str(e), e.path) from None
+    return _plain(value)
+
+
+def _load(text_or_dict: Any) -> Any:
+    """The payload as plain JSON values, within ``limits`` (the type of the top level is
+    checked by the schema)."""
+    if isinstance(text_or_dict, (bytes, bytearray, str)):
         try:
-            text_or_dict = bytes(text_or_dict).decode('utf-8')
+            text_or_dict = loads(text_or_dict)
+        except LimitExceeded as e:
+            raise SceneValidationError(str(e), e.path) from None
         except UnicodeDecodeError as e:
             raise SceneValidationError(
                 f'the payload is not valid UTF-8 text: byte {e.start} cannot be decoded',
                 '') from None
-    if isinstance(text_or_dict, str):
-        try:
-            return json.loads(text_or_dict)
         except json.JSONDecodeError as e:
             raise SceneValidationError(
                 f'the payload is not valid JSON: {e.msg} at line {e.lineno} column {e.colno}',
@@ -160,27 +167,11 @@ def _load(text_or_dict: Any) -> dict[str, Any]:
         except RecursionError:
             raise SceneValidationError('the payload is not valid JSON: it is nested too deeply',
                                        '') from None
+        return _tree(text_or_dict)
     if isinstance(text_or_dict, Mapping):
-        return _plain(text_or_dict)
+        return _tree(text_or_dict)
     raise SceneValidationError(
         f'the payload must be JSON text or a dict, got {type(text_or_dict).__name__}', '')
-
-
-def _check_finite(value: Any, path: str = '') -> None:
-    """NaN and +-Infinity are not JSON (Python's json reads them): report the first one."""
-    if isinstance(value, float) and not math.isfinite(value):
-        raise SceneValidationError(f'{_name(path)} must be a finite number, got {number(value)}',
-                                   path)
-    if isinstance(value, int) and not isinstance(value, bool) and abs(value) > 1e300:
-        raise SceneValidationError(
-            f'{_name(path)} must be a finite number, got an integer with {len(str(value))} '
-            f'digits', path)
-    if isinstance(value, dict):
-        for k, v in value.items():
-            _check_finite(v, _join(path, str(k)))
-    elif isinstance(value, list):
-        for i, v in enumerate(value):
-            _check_finite(v, _join(path, i))
 
 
 @lru_cache(maxsize=None)
@@ -242,6 +233,8 @@ def _schema_error_message(error, prefix: str) -> tuple[str, str]:
         return path, f'{name} must have {need} {noun}, got {len(inst)}'
     if kw == 'minLength':
         return path, f'{name} must not be empty'
+    if kw == 'maxLength':
+        return path, f'{name} must be at most {val} characters long, got {len(inst)}'
     bounds = {'minimum': 'at least', 'maximum': 'at most',
               'exclusiveMinimum': 'greater than', 'exclusiveMaximum': 'less than'}
     if kw in bounds:
@@ -267,11 +260,13 @@ def _room_type(value: str, path: str) -> str:
         return resolve_room_type(value)
     except UnknownRoomType:
         raise SceneValidationError(
-            f'{path} {value!r} is not a known room type (expected one of '
+            f'{path} {quoted(value)} is not a known room type (expected one of '
             f'{", ".join(ROOM_TYPES)}, or an alias such as \'living room\')', path) from None
 
 
-def _check_floor(points: list[list[float]], prefix: str) -> None:
+def _check_floor(points: list[list[float]], prefix: str) -> list[tuple[float, float]]:
+    """The floor's vertices as the room keeps them (an explicit closing vertex dropped),
+    after the checks that they make a simple polygon of a room's area."""
     path = _join(prefix, 'floor')
     pts = [(float(x), float(y)) for x, y in points]
     if len(pts) > 1 and math.dist(pts[0], pts[-1]) < MIN_VERTEX_SPACING:
@@ -286,6 +281,11 @@ def _check_floor(points: list[list[float]], prefix: str) -> None:
             raise SceneValidationError(
                 f'{vpath} repeats the previous vertex ({number(pts[i][0])}, {number(pts[i][1])})',
                 vpath)
+    if math.dist(pts[-1], pts[0]) < MIN_VERTEX_SPACING:     # the ring closes past two
+        vpath = _join(path, len(pts) - 1)
+        raise SceneValidationError(
+            f'{vpath} repeats the first vertex ({number(pts[0][0])}, {number(pts[0][1])}) '
+            f'after the ring was already closed', vpath)
     arr = np.asarray(pts)
     centred = arr - arr.mean(axis=0)
     extent = float(np.abs(centred).max())
@@ -309,6 +309,7 @@ def _check_floor(points: list[list[float]], prefix: str) -> None:
         raise SceneValidationError(
             f'{path} encloses {number(poly.area)} m², less than the {number(MIN_FLOOR_AREA)} m² '
             f'minimum of a room', path)
+    return pts
 
 
 def _check_fits(room: Room, prefix: str) -> None:
@@ -365,8 +366,7 @@ def _check_openings(room: Room, prefix: str) -> None:
 def _build_room(d: dict[str, Any], prefix: str) -> Room:
     """The Room of an (already schema-valid) room dict, after the geometric checks."""
     room_type = _room_type(d['room_type'], _join(prefix, 'room_type'))
-    _check_floor(d['floor'], prefix)
-    room = Room(room_type, ccw(d['floor']),
+    room = Room(room_type, ccw(_check_floor(d['floor'], prefix)),
                 float(d.get('wall_height', DEFAULT_WALL_HEIGHT)),
                 tuple(Opening.from_dict('door', o) for o in d.get('doors', [])),
                 tuple(Opening.from_dict('window', o) for o in d.get('windows', [])))
@@ -391,9 +391,9 @@ def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str) -> list
         if d.get('id') is not None:
             ipath = _join(_join(prefix, i), 'id')
             if d['id'] in seen:
+                first = _join(prefix, seen[d['id']])
                 raise SceneValidationError(
-                    f'{ipath} {d["id"]!r} is already the id of {_join(prefix, seen[d["id"]])}',
-                    ipath)
+                    f'{ipath} {quoted(d["id"])} is already the id of {first}', ipath)
             seen[d['id']] = i
     for i in range(len(items)):
         _check_support(items, i, seen, _join(_join(prefix, i), 'support'), room, spec)
@@ -416,10 +416,10 @@ def _check_object(d: dict[str, Any], path: str, room: Room, spec: RoomTypeSpec) 
     cpath = _join(path, 'category')
     if category not in CATEGORIES:
         raise SceneValidationError(
-            f'{cpath} {category!r} is not a known category', cpath)
+            f'{cpath} {quoted(category)} is not a known category', cpath)
     if category not in spec:
         raise SceneValidationError(
-            f'{cpath} {category!r} is not a category of {with_article(room.room_type)} '
+            f'{cpath} {quoted(category)} is not a category of {with_article(room.room_type)} '
             f'({with_article(room.room_type)} may hold: {", ".join(spec.names)})', cpath)
     info = CATEGORIES[category]
     w, dep, h = (float(v) for v in d['size'])
@@ -449,10 +449,10 @@ def _check_object(d: dict[str, Any], path: str, room: Room, spec: RoomTypeSpec) 
             model = catalog.get(d['model_id'])
         except KeyError:
             raise SceneValidationError(
-                f'{mpath} {d["model_id"]!r} is not a catalog model id', mpath) from None
+                f'{mpath} {quoted(d["model_id"])} is not a catalog model id', mpath) from None
         if model.category != category:
             raise SceneValidationError(
-                f'{mpath} {d["model_id"]!r} is {with_article(model.category)} model, not '
+                f'{mpath} {quoted(d["model_id"])} is {with_article(model.category)} model, not '
                 f'{with_article(category)}', mpath)
 
 
@@ -466,7 +466,7 @@ def _check_support(items: list[dict[str, Any]], i: int, seen: dict[str, int], sp
         if support is not None:
             raise SceneValidationError(
                 f'{spath} must be absent because {with_article(category)} stands on the '
-                f'floor (first tier), got {support!r}', spath)
+                f'floor (first tier), got {quoted(support)}', spath)
         return
     parents = spec.supports(category)
     if support is None:
@@ -475,13 +475,13 @@ def _check_support(items: list[dict[str, Any]], i: int, seen: dict[str, int], sp
             f'object (one of {", ".join(parents)})', spath)
     if support not in seen:
         raise SceneValidationError(
-            f'{spath} {support!r} is not the id of any object in the scene', spath)
+            f'{spath} {quoted(support)} is not the id of any object in the scene', spath)
     if seen[support] == i:
         raise SceneValidationError(f'{spath} names the object itself', spath)
     parent_category = items[seen[support]]['category']
     if parent_category not in parents:
         raise SceneValidationError(
-            f'{spath} {support!r} is {with_article(parent_category)}, which cannot hold '
+            f'{spath} {quoted(support)} is {with_article(parent_category)}, which cannot hold '
             f'{with_article(category)} in {with_article(room.room_type)} '
             f'(allowed: {", ".join(parents)})', spath)
 
@@ -507,16 +507,15 @@ def _fill_ids(items: list[dict[str, Any]], room: Room) -> list[dict[str, Any]]:
 
 def validate_layout_dict(d: Any) -> None:
     """Raise SceneValidationError unless ``d`` is a valid room layout (objects optional)."""
-    _layout_to_scene(_plain(d))
+    _layout_to_scene(_tree(d))
 
 
 def validate_scene_dict(d: Any) -> None:
     """Raise SceneValidationError unless ``d`` is a valid scene dict."""
-    _scene_from_dict(_plain(d))
+    _scene_from_dict(_tree(d))
 
 
 def _layout_to_scene(d: Any) -> Scene:
-    _check_finite(d)
     _check_schema(d, 'room_layout')
     room = _build_room(d, '')
     items = d.get('objects', [])
@@ -525,7 +524,6 @@ def _layout_to_scene(d: Any) -> Scene:
 
 
 def _scene_from_dict(d: Any) -> Scene:
-    _check_finite(d)
     _check_schema(d, 'scene')
     room = _build_room(d['room'], 'room')
     objects = _build_objects(d.get('objects', []), room, 'objects')
@@ -560,7 +558,7 @@ def load_scene(path: str | os.PathLike) -> Scene:
 def dump_scene(scene: Scene) -> str:
     """The scene as JSON text, validated first (an invalid scene raises
     SceneValidationError, so nothing invalid is ever written)."""
-    d = _plain(scene.to_dict())
+    d = _tree(scene.to_dict())
     _scene_from_dict(d)
     try:
         return _format(d)

@@ -22,7 +22,7 @@ import time
 from typing import Any, Callable
 
 from .categories import ROOM_TYPES, resolve_room_type
-from .errors import SceneSynthError, UnknownRoomType
+from .errors import SceneSynthError, UnknownRoomType, sentence
 from .files import write_atomic
 from .markers import MARKER_STYLES
 from .networks.config import resolve_device
@@ -317,7 +317,7 @@ class SceneServer:
             try:
                 self._execute(job)
             except Exception as e:   # a bug must not kill the worker: report it and go on
-                text = ' '.join(str(e).split()) or type(e).__name__
+                text = sentence(e) or type(e).__name__
                 job.ok, job.message = False, f'internal error in {job.kind}: {text}'
                 self._set_status(level=ERROR, message=job.message, last_error=job.message)
                 self._log('error', job.message)
@@ -451,6 +451,9 @@ class SceneServer:
         self._set_status(increment='requests_superseded')
 
     def _set_status(self, increment: str | None = None, **changes) -> None:
+        for key in ('message', 'last_error'):      # bounded on /diagnostics, whatever the input
+            if key in changes:
+                changes[key] = sentence(changes[key])
         with self._lock:
             if increment:
                 changes[increment] = getattr(self.status, increment) + 1

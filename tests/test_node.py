@@ -24,6 +24,7 @@ import yaml
 
 os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'   # before any rclpy.init
 
+from scene_synth_ros.errors import MAX_SENTENCE  # noqa: E402
 from scene_synth_ros.paths import config_dir, examples_dir, weights_dir  # noqa: E402
 from scene_synth_ros.ros_client import (  # noqa: E402
     SceneSynthClient,
@@ -177,6 +178,19 @@ BAD_LAYOUTS = {
     'too small': (json.dumps({'room_type': 'bathroom', 'floor': [[0, 0], [0.6, 0], [0.6, 0.6],
                                                                  [0, 0.6]]}), 'm²'),
     'unknown room type': (LAYOUT.replace('"bedroom"', '"garage"'), 'garage'),
+    # Each of these killed the node once (issue 12).
+    'has a key that is a lone surrogate': ('{"\\ud800": 1, ' + LAYOUT.lstrip()[1:],
+                                          'not a known field'),
+    'has an integer of 4,301 digits': (LAYOUT.replace('"wall_height": 2.6',
+                                                      '"wall_height": 1' + '0' * 4301),
+                                       'at most 1000 are read'),
+    'is nested 975 deep': ('{"room_type": "bedroom", "floor": ' + '[' * 975 + ']' * 975 + '}',
+                           'nested'),
+    'has a huge coordinate': (json.dumps({'room_type': 'bedroom',
+                                          'floor': [[1e308, 0], [4, 0], [4, 4], [0, 4]]}),
+                              'at most 100000 m'),
+    'is 2 MB long': (json.dumps({'room_type': 'x' * 2_000_000, 'floor': [[0, 0], [1, 0]]}),
+                     'bytes'),
 }
 
 
@@ -202,6 +216,7 @@ def test_bad_input_is_rejected_in_one_sentence_and_the_node_keeps_serving(node):
         assert diag['level'] == '1', what
         assert needle in diag['last error'] and '\n' not in diag['last error'], \
             (what, diag['last error'])
+        assert len(diag['last error']) <= MAX_SENTENCE, what
         assert diag['message'].startswith('input rejected: '), what
     time.sleep(0.3)
     assert client.count('scene') == scenes                    # nothing was published for them
@@ -210,6 +225,19 @@ def test_bad_input_is_rejected_in_one_sentence_and_the_node_keeps_serving(node):
     ok, message = client.call('next_object')
     assert ok or 'nothing more fits' in message
     assert node.log().count('[WARN]') >= len(bad)
+
+
+def test_a_nearly_closed_outline_is_furnished_and_the_node_keeps_answering(node):
+    # Its last vertex 0.5 mm from the first once reached the markers as a sliver wall, which
+    # GEOS could not triangulate; the node then stopped answering.
+    layout = json.loads(LAYOUT)
+    x, y = layout['floor'][0]
+    layout['floor'].append([x + 0.0005, y])
+    scene = _furnish(node, json.dumps(layout))
+    assert len(scene['room']['floor']) == len(layout['floor']) - 1
+    ok, message = node.client.call('next_object')
+    assert ok or 'nothing more fits' in message
+    assert node.client.diagnostics()['level'] == '0'
 
 
 def test_parameters_change_at_run_time_and_bad_values_are_refused(node, tmp_path):
