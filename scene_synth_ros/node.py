@@ -42,6 +42,9 @@ from .server import PARAMETERS, ConfigError, SceneServer, Served, ServerConfig, 
 
 NODE_NAME = 'scene_synth_node'
 EXIT_STARTUP_FAILED = 1
+# Service calls waiting for the worker hold one thread each (at most max_pending, 6): two
+# more keep answering "busy", the diagnostics timer and the subscriptions.
+EXECUTOR_THREADS = 8
 
 _KINDS = {'cube': Marker.CUBE, 'mesh': Marker.MESH_RESOURCE, 'text': Marker.TEXT_VIEW_FACING,
           'triangle_list': Marker.TRIANGLE_LIST}
@@ -209,12 +212,15 @@ def main(args: list[str] | None = None) -> int:
     code = 0
     try:
         node = SceneSynthNode()
-        executor = MultiThreadedExecutor(num_threads=4)
+        executor = MultiThreadedExecutor(num_threads=EXECUTOR_THREADS)
         executor.add_node(node)
         while not stop.is_set() and rclpy.ok():
             executor.spin_once(timeout_sec=0.2)
         node.get_logger().info('shutting down')
-        executor.shutdown(timeout_sec=5.0)
+        # Answer the calls waiting for the worker first: their callbacks hold the executor's
+        # threads, which its shutdown waits for.
+        node.server.close(timeout=1.5)
+        executor.shutdown(timeout_sec=2.0)
     except StartupError as e:
         print(f'{NODE_NAME}: cannot start: {e}', file=sys.stderr)
         code = EXIT_STARTUP_FAILED

@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import random
 import signal
 import subprocess
 import sys
@@ -191,14 +192,26 @@ class SceneSynthClient:
                         'subscription to room_polygon')
         self._polygon_pub.publish(msg)
 
-    def call(self, service: str, timeout: float = 120.0) -> tuple[bool, str]:
-        """Call ``next_object``, ``generate`` or ``reset``: (success, message)."""
+    def call(self, service: str, timeout: float = 120.0,
+             retry_busy: bool = True) -> tuple[bool, str]:
+        """Call ``next_object``, ``generate`` or ``reset``: (success, message). A "busy"
+        answer (the node already has ``max_pending`` calls waiting) is retried after a
+        growing, jittered pause until ``timeout``, unless ``retry_busy`` is off."""
         client = self._services[service]
+        deadline = time.monotonic() + timeout
         self.spin_until(client.service_is_ready, min(timeout, 30.0), f'{service} service')
-        future = client.call_async(Trigger.Request())
-        self.spin_until(future.done, timeout, f'{service} response')
-        response = future.result()
-        return response.success, response.message
+        pause = 0.05
+        while True:
+            future = client.call_async(Trigger.Request())
+            self.spin_until(future.done, max(deadline - time.monotonic(), 0.0),
+                            f'{service} response')
+            response = future.result()
+            busy = not response.success and response.message.startswith('busy:')
+            if not (busy and retry_busy) or time.monotonic() + pause > deadline:
+                return response.success, response.message
+            until = time.monotonic() + pause * (0.5 + random.random())
+            self.spin_until(lambda u=until: time.monotonic() > u, pause * 2, 'pause')
+            pause = min(pause * 2, 0.5)
 
     def get_parameters(self, names: list[str], timeout: float = 10.0) -> dict[str, Any]:
         self.spin_until(lambda: self._params.services_are_ready(), timeout, 'parameter services')

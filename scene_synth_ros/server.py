@@ -52,6 +52,7 @@ class ServerConfig:
     export_dir: str = ''                # '' = no export; else JSON + SDF + glTF per room
     mesh_dir: str = ''                  # '' = ~/.cache/scene_synth_ros/meshes
     torch_threads: int = 1              # 1 beat 2 on 2 cores beside a client (bench_node)
+    max_pending: int = 4                # service calls that may wait for the worker
 
 
 # name -> (description, numeric range or allowed strings, read only). The node builds its
@@ -76,6 +77,8 @@ PARAMETERS: dict[str, tuple[str, Any, bool]] = {
     'mesh_dir': ("where catalog meshes for mesh markers are written; '' = user cache", None,
                  True),
     'torch_threads': ('CPU threads torch may use', (1, 64), True),
+    'max_pending': ('service calls that may wait for the worker; one more is answered '
+                    '"busy" at once', (1, 6), False),
 }
 
 
@@ -162,6 +165,7 @@ class Status:
     rooms_served: int = 0
     inputs_rejected: int = 0
     requests_superseded: int = 0
+    requests_busy: int = 0               # calls answered "busy" (max_pending were waiting)
     busy: bool = False
     objects: int = 0
     room_type: str = ''
@@ -174,6 +178,7 @@ class Status:
         out = {'rooms served': str(self.rooms_served),
                'inputs rejected': str(self.inputs_rejected),
                'requests superseded': str(self.requests_superseded),
+               'requests answered busy': str(self.requests_busy),
                'busy': str(self.busy).lower(),
                'room type': self.room_type, 'objects': str(self.objects),
                'seed': '' if self.seed is None else str(self.seed),
@@ -221,6 +226,8 @@ class SceneServer:
         self._scene: Scene | None = None
         self.status = Status()
         self._queue: queue.Queue[_Job | None] = queue.Queue()
+        self._pending = 0                  # service calls queued or running
+        self._closing = False
         self._worker = threading.Thread(target=self._run, name='scene_synth_worker',
                                         daemon=True)
         self._worker.start()
@@ -289,12 +296,29 @@ class SceneServer:
         if kind not in ('generate', 'next_object', 'reset'):
             raise ValueError(f'unknown request {kind!r}')
         with self._lock:
-            job = _Job(kind, self._epoch)
+            if self._closing:
+                return False, 'the node is shutting down'
+            # The load policy: a bounded wait, never a queue that grows with the callers.
+            # Each waiting call holds one of the executor's threads; past ``max_pending`` the
+            # caller learns at once that it should call again.
+            waiting = self._pending
+            busy = waiting >= self.config.max_pending
+            if not busy:
+                self._pending += 1
+                job = _Job(kind, self._epoch)
+        if busy:
+            self._set_status(increment='requests_busy')
+            return False, (f'busy: {waiting} requests are already waiting for the synthesis '
+                           f'worker (max_pending); call again shortly')
         self._queue.put(job)
-        if not job.done.wait(timeout):
-            job.abandoned = True
-            return False, f'{kind} did not finish within {timeout:.0f} s'
-        return job.ok, job.message
+        try:
+            if not job.done.wait(timeout):
+                job.abandoned = True
+                return False, f'{kind} did not finish within {timeout:.0f} s'
+            return job.ok, job.message
+        finally:
+            with self._lock:
+                self._pending -= 1
 
     @property
     def scene(self) -> Scene | None:
@@ -302,9 +326,19 @@ class SceneServer:
             return None if self._scene is None else self._scene.copy()
 
     def close(self, timeout: float = 5.0) -> None:
-        """Stop the worker after cancelling what it is doing."""
+        """Stop the worker after cancelling what it is doing; every call still waiting is
+        answered at once that the node is shutting down."""
         with self._lock:
-            self._epoch += 1
+            self._closing = True
+            self._epoch += 1               # cancels the synthesis under way
+        while True:
+            try:
+                job = self._queue.get_nowait()
+            except queue.Empty:
+                break
+            if job is not None:
+                job.ok, job.message = False, 'the node is shutting down'
+                job.done.set()
         self._queue.put(None)
         self._worker.join(timeout)
 
@@ -447,6 +481,9 @@ class SceneServer:
                          last_error=sentence, increment='inputs_rejected')
 
     def _supersede(self, job: _Job) -> None:
+        if self._closing:
+            job.message = 'the node is shutting down'
+            return
         job.message = 'superseded by a newer room layout'
         self._set_status(increment='requests_superseded')
 

@@ -224,3 +224,59 @@ def test_an_exception_in_the_publisher_is_reported_and_the_worker_survives():
         assert len(calls) == 2
     finally:
         srv.close()
+
+
+def _hold_worker(srv):
+    """Make the worker wait inside the publisher until the returned event is set."""
+    entered, release = threading.Event(), threading.Event()
+    publish = srv._publish
+
+    def slow(served):
+        entered.set()
+        release.wait(30)
+        publish(served)
+    srv._publish = slow
+    return entered, release
+
+
+def test_calls_past_max_pending_are_answered_busy_at_once(server):
+    server.reconfigure({'max_pending': 2})
+    assert server.submit_layout(LAYOUT)
+    server.rec.wait(1)
+    entered, release = _hold_worker(server)
+    answers = []
+    callers = [threading.Thread(target=lambda: answers.append(server.request('next_object')))
+               for _ in range(2)]
+    for t in callers:
+        t.start()
+    assert entered.wait(30)
+    ok, message = server.request('generate')            # two are waiting: this one is not
+    assert not ok and message.startswith('busy: 2 requests are already waiting')
+    assert server.status.requests_busy == 1
+    release.set()
+    for t in callers:
+        t.join(30)
+    assert len(answers) == 2 and all(ok or 'nothing more fits' in m for ok, m in answers)
+    ok, _ = server.request('reset')                      # and then it takes calls again
+    assert ok
+
+
+def test_close_answers_every_waiting_call_at_once(server):
+    assert server.submit_layout(LAYOUT)
+    server.rec.wait(1)
+    entered, release = _hold_worker(server)
+    answers = []
+    callers = [threading.Thread(target=lambda: answers.append(server.request('next_object')))
+               for _ in range(2)]
+    for t in callers:
+        t.start()
+    assert entered.wait(30)
+    closer = threading.Thread(target=server.close, kwargs={'timeout': 0.5})
+    closer.start()
+    closer.join(5)
+    release.set()
+    for t in callers:
+        t.join(5)
+    assert not any(t.is_alive() for t in callers)
+    assert any(m == 'the node is shutting down' for _, m in answers), answers
+    assert server.request('reset') == (False, 'the node is shutting down')
