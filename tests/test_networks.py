@@ -285,8 +285,9 @@ def test_snap_and_angle_decoding():
     assert snap_angle(math.radians(88)) == pytest.approx(math.pi / 2)
     assert snap_angle(math.radians(-179)) == pytest.approx(-math.pi)
     assert snap_angle(math.radians(44)) == 0.0
-    theta = torch.tensor([0.0, math.pi / 2 + 0.01, math.radians(45), -math.pi + 0.001])
-    assert is_snapped(theta).tolist() == [True, True, False, True]
+    theta = torch.tensor([0.0, math.pi / 2 + 0.01, math.radians(45), -math.pi + 0.001,
+                          math.radians(98), math.radians(-12)])
+    assert is_snapped(theta).tolist() == [True, True, False, True, True, False]
     out = torch.tensor([[10.0, 10.0], [-10.0, -10.0], [0.0, 10.0]])
     ang = decode_angle(out, torch.Generator().manual_seed(0))
     assert ang[0].abs() < 0.1 and abs(abs(ang[1]) - math.pi) < 0.1
