@@ -372,3 +372,22 @@ def test_a_bad_start_up_parameter_stops_the_node_in_one_sentence(tmp_path):
     r = _start_and_wait(tmp_path, {'location_temperature': -3.0})
     assert r.returncode == 1 and 'location_temperature' in r.stderr
     assert 'Traceback' not in r.stderr
+
+
+def test_the_node_logs_every_severity_and_any_text_from_one_place():
+    # rclpy refuses a second severity from one call site; the worker once died of it.
+    import rclpy
+    from rclpy.context import Context
+
+    from scene_synth_ros.node import SceneSynthNode
+    ctx = Context()
+    rclpy.init(context=ctx, domain_id=_domain())
+    try:
+        node = SceneSynthNode(context=ctx, parameter_overrides=[])
+        try:
+            for level in ('warn', 'error', 'warn', 'info', 'error'):
+                node._log(level, 'a key \ud800 in a sentence\nover two lines ' + 'x' * 10_000)
+        finally:
+            node.destroy_node()
+    finally:
+        rclpy.try_shutdown(context=ctx)
