@@ -12,7 +12,7 @@
    followed by a ``reset`` call that must be answered); then the node must still furnish a
    valid layout. Prints node deaths, wedges, and the largest /diagnostics message.
 3. Memory: the node's resident memory before and after ``--mixed`` inputs (valid layouts,
-   bad ones, service calls) past a warm-up of 100.
+   bad ones, payloads of 1-7 MB, service calls) past a warm-up of 100.
 4. SIGTERM with three calls in flight: exit code and seconds to exit.
 """
 import argparse
@@ -167,8 +167,11 @@ def memory(domain: int, proc, n: int) -> None:
             if r < 0.4:
                 client.publish_layout(layout_text(rng.choice(ROOM_TYPES), rng.randrange(200)),
                                       timeout=CALL_TIMEOUT, check=False)
-            elif r < 0.7:
+            elif r < 0.67:
                 client.publish_layout(invalid_layout(rng, k), wait=False, check=False)
+            elif r < 0.7:                   # past the payload limit: refused unread
+                client.publish_layout('{"room_type": "' + 'x' * rng.randrange(1, 8) * 2**20,
+                                      wait=False, check=False)
             else:
                 client.call(rng.choice(SERVICES), timeout=CALL_TIMEOUT)
         for k in range(100):

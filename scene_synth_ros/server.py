@@ -216,7 +216,7 @@ class SceneServer:
         self.config = config
         self._publish = publish
         self._on_status = on_status or (lambda s: None)
-        self._log = log or (lambda level, text: None)
+        self._logger = log or (lambda level, text: None)
         import torch
         torch.set_num_threads(config.torch_threads)
         self._synth = self._load(config.weights_dir, config.device)
@@ -475,10 +475,16 @@ class SceneServer:
             self._set_status(level=WARN, message=text, last_error=text)
 
     # ---- status ---------------------------------------------------------------------------
-    def _reject(self, sentence: str) -> None:
-        self._log('warn', sentence)
-        self._set_status(level=WARN, message=f'input rejected: {sentence}',
-                         last_error=sentence, increment='inputs_rejected')
+    def _log(self, level: str, text: str) -> None:
+        try:
+            self._logger(level, sentence(text))
+        except Exception:      # a failing logger (its context going away) must not stop the worker
+            pass
+
+    def _reject(self, reason: str) -> None:
+        self._log('warn', reason)
+        self._set_status(level=WARN, message=f'input rejected: {reason}',
+                         last_error=reason, increment='inputs_rejected')
 
     def _supersede(self, job: _Job) -> None:
         if self._closing:

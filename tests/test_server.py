@@ -280,3 +280,19 @@ def test_close_answers_every_waiting_call_at_once(server):
     assert not any(t.is_alive() for t in callers)
     assert any(m == 'the node is shutting down' for _, m in answers), answers
     assert server.request('reset') == (False, 'the node is shutting down')
+
+
+def test_a_failing_logger_does_not_stop_the_worker():
+    def log(level, text):
+        raise RuntimeError('the logging context is gone')
+
+    rec = Recorder()
+    srv = SceneServer(ServerConfig(torch_threads=1, auto_generate=False), rec.publish,
+                      rec.status, log)
+    try:
+        assert not srv.submit_layout('{"room_type": "garage"')        # logged: raises
+        assert srv.submit_layout(LAYOUT)
+        assert srv.request('reset')[0]
+        assert srv.status.inputs_rejected == 1
+    finally:
+        srv.close()
