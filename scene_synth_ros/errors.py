@@ -68,6 +68,8 @@ def number(x: float) -> str:
             return 'NaN'
         if math.isinf(x):
             return 'Infinity' if x > 0 else '-Infinity'
+    if isinstance(x, int) and x.bit_length() > 1000:      # past what a float can hold
+        return f'{"-" if x < 0 else ""}10^{int(x.bit_length() * math.log10(2))}'
     if abs(float(x)) >= 1e9:          # no hundred-digit renderings of huge inputs
         return f'{float(x):.6g}'
     s = f'{float(x):.3f}'.rstrip('0').rstrip('.')
