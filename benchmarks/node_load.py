@@ -227,8 +227,9 @@ def main() -> int:
                 client.publish_layout(layout_text('bedroom', 0), timeout=CALL_TIMEOUT)
             print(f'node pid {proc.pid}, domain {args.domain_id}, resident '
                   f'{rss_mb(proc.pid):.0f} MB after its first room')
-            load(args.domain_id, args.clients, args.calls, retry=False)
-            load(args.domain_id, args.clients, args.calls, retry=True)
+            if args.clients > 0:
+                load(args.domain_id, args.clients, args.calls, retry=False)
+                load(args.domain_id, args.clients, args.calls, retry=True)
             fuzz(args.domain_id, proc, args.fuzz)
             memory(args.domain_id, proc, args.mixed)
             sigterm(args.domain_id, proc)
