@@ -306,11 +306,11 @@ class SceneServer:
             if not busy:
                 self._pending += 1
                 job = _Job(kind, self._epoch)
+                self._queue.put(job)     # under the lock: close() either drains it or was first
         if busy:
             self._set_status(increment='requests_busy')
             return False, (f'busy: {waiting} requests are already waiting for the synthesis '
                            f'worker (max_pending); call again shortly')
-        self._queue.put(job)
         try:
             if not job.done.wait(timeout):
                 job.abandoned = True
