@@ -239,17 +239,24 @@ def _hold_worker(srv):
     return entered, release
 
 
-def test_calls_past_max_pending_are_answered_busy_at_once(server):
-    server.reconfigure({'max_pending': 2})
-    assert server.submit_layout(LAYOUT)
-    server.rec.wait(1)
-    entered, release = _hold_worker(server)
+def _two_calls_waiting(srv):
+    """A room served, then two ``next_object`` calls waiting behind a worker held in its
+    publisher: (their answers as they come, the calling threads, the event releasing it)."""
+    assert srv.submit_layout(LAYOUT)
+    srv.rec.wait(1)
+    entered, release = _hold_worker(srv)
     answers = []
-    callers = [threading.Thread(target=lambda: answers.append(server.request('next_object')))
+    callers = [threading.Thread(target=lambda: answers.append(srv.request('next_object')))
                for _ in range(2)]
     for t in callers:
         t.start()
     assert entered.wait(30)
+    return answers, callers, release
+
+
+def test_calls_past_max_pending_are_answered_busy_at_once(server):
+    server.reconfigure({'max_pending': 2})
+    answers, callers, release = _two_calls_waiting(server)
     ok, message = server.request('generate')            # two are waiting: this one is not
     assert not ok and message.startswith('busy: 2 requests are already waiting')
     assert server.status.requests_busy == 1
@@ -262,15 +269,7 @@ def test_calls_past_max_pending_are_answered_busy_at_once(server):
 
 
 def test_close_answers_every_waiting_call_at_once(server):
-    assert server.submit_layout(LAYOUT)
-    server.rec.wait(1)
-    entered, release = _hold_worker(server)
-    answers = []
-    callers = [threading.Thread(target=lambda: answers.append(server.request('next_object')))
-               for _ in range(2)]
-    for t in callers:
-        t.start()
-    assert entered.wait(30)
+    answers, callers, release = _two_calls_waiting(server)
     closer = threading.Thread(target=server.close, kwargs={'timeout': 0.5})
     closer.start()
     closer.join(5)
