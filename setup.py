@@ -23,6 +23,9 @@ setup(
         ('share/' + PACKAGE + '/msg_schemas', _files('msg_schemas/*.json')),
         ('share/' + PACKAGE + '/config', _files('config/*.yaml')),
         ('share/' + PACKAGE + '/examples', _files('examples/*.json')),
+        ('share/' + PACKAGE + '/launch', _files('launch/*.launch.*')),
+        ('share/' + PACKAGE + '/rviz', _files('rviz/*.rviz')),
+        ('share/' + PACKAGE + '/meshes', _files('meshes/*')),
     ],
     # The weights live inside the Python package (found from __file__ wherever it is
     # installed), so they are not copied to share/ as well.

@@ -263,11 +263,14 @@ class RoomTypeSpec:
         return tuple(p for p in CATEGORIES[child].supported_by if p in self)
 
 
+# Other names accepted for a room type (after lower-casing, '_' read as ' ').
+ROOM_TYPE_ALIASES = {'living room': 'living', 'livingroom': 'living', 'bed room': 'bedroom'}
+
+
 def resolve_room_type(name: str) -> str:
     """Canonical room type for a user-given name ('living room' -> 'living')."""
     key = name.strip().lower().replace('_', ' ')
-    aliases = {'living room': 'living', 'livingroom': 'living', 'bed room': 'bedroom'}
-    key = aliases.get(key, key)
+    key = ROOM_TYPE_ALIASES.get(key, key)
     if key not in ROOM_TYPES:
         raise UnknownRoomType(f'unknown room type {name!r}; expected one of '
                               f'{", ".join(ROOM_TYPES)}')

@@ -1,7 +1,7 @@
 """Writing files whole or not at all, under names that cannot collide.
 
-The files others read while they may be changing (scenes, the node's exports, the mesh cache
-RViz loads, weight bundles, training checkpoints, the corpus calibration) go through
+The files others read while they may be changing (scenes, the node's exports, weight
+bundles, training checkpoints, the corpus calibration) go through
 ``write_atomic``/``writing_together``: written under a private temporary directory beside
 their destination, then renamed into place, so a reader never sees half a file and a failed
 write leaves the old file as it was. A rename within one directory is atomic on POSIX and on

@@ -11,6 +11,8 @@ refused with one sentence before it is parsed further.
   ``MAX_NODES`` values in all;
 * a number: a literal of at most ``MAX_NUMBER_CHARS`` characters, finite;
 * a string or a key: at most ``MAX_STRING`` characters;
+* YAML text (read only where a person types the input, see ``loads_yaml``): at most
+  ``MAX_YAML_BYTES``, no anchors or aliases, JSON's kinds of values only;
 * a room: the counts and coordinate range in ``msg_schemas/`` (``maxItems``, ``maximum``),
   which the JSON Schema check applies next: ``MAX_FLOOR_VERTICES`` floor vertices,
   ``MAX_OPENINGS`` doors and as many windows, ``MAX_OBJECTS`` objects, coordinates within
@@ -19,6 +21,7 @@ refused with one sentence before it is parsed further.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from functools import lru_cache
 import json
 import math
 from typing import Any, Callable
@@ -32,6 +35,7 @@ MAX_DEPTH = 32                    # a layout is 4 levels deep; the rest is for m
 MAX_NODES = 20_000                # values in a document: bounds the schema check's work
 MAX_NUMBER_CHARS = 1000           # characters of one number literal (Python refuses 4300 digits)
 MAX_STRING = 4096                 # characters of one string or key
+MAX_YAML_BYTES = 64 << 10         # YAML is parsed in pure Python: a typed room is under 2 KB
 # Mirrored in msg_schemas/ (a test checks that the two agree).
 MAX_FLOOR_VERTICES = 256
 MAX_OPENINGS = 64
@@ -93,6 +97,77 @@ def loads(text: str | bytes | bytearray) -> Any:
     if isinstance(text, (bytes, bytearray)):
         text = bytes(text).decode('utf-8')
     return json.loads(text, parse_int=_PARSE_INT, parse_float=_PARSE_FLOAT)
+
+
+class YamlError(ValueError):
+    """Text that is not YAML of JSON's kinds of values: one sentence, without the text."""
+
+
+def loads_yaml(text: str) -> Any:
+    """YAML text (a superset of JSON; its flow style is what people type at ``ros2 topic
+    pub``) as Python values of the kinds JSON has. Raises ``LimitExceeded`` past the bounds
+    and ``YamlError`` for anything else."""
+    import yaml
+
+    size = len(text.encode('utf-8', 'surrogatepass'))
+    if size > MAX_YAML_BYTES:
+        raise LimitExceeded(f'the payload is {size} bytes, and YAML is read only up to '
+                            f'{MAX_YAML_BYTES} bytes (JSON up to {MAX_PAYLOAD_BYTES})')
+    try:
+        value = yaml.load(text, Loader=_yaml_loader())
+    except yaml.MarkedYAMLError as e:
+        where = f' at line {e.problem_mark.line + 1} column {e.problem_mark.column + 1}' \
+            if e.problem_mark else ''
+        raise YamlError(f'{e.problem or e.context}{where}') from None
+    except yaml.YAMLError as e:
+        raise YamlError(' '.join(str(e).split())) from None
+    except RecursionError:
+        raise YamlError('it is nested too deeply') from None
+    except ValueError:               # an integer past Python's digit limit
+        raise YamlError('it has a number too long to read') from None
+    _check_json_kinds(value)
+    return value
+
+
+@lru_cache(maxsize=None)
+def _yaml_loader():
+    # PyYAML is imported on first use: most inputs are JSON.
+    import yaml
+
+    class JsonKindsLoader(yaml.SafeLoader):
+        """The safe loader without aliases (a few bytes of them expand to millions of
+        values) and without dates, which JSON does not have (they stay text)."""
+
+        def compose_node(self, parent, index):
+            if self.check_event(yaml.AliasEvent):
+                raise yaml.composer.ComposerError(
+                    None, None, 'YAML aliases (*name) are not accepted',
+                    self.peek_event().start_mark)
+            return super().compose_node(parent, index)
+
+    JsonKindsLoader.yaml_implicit_resolvers = {
+        first: [(tag, rx) for tag, rx in resolvers if not tag.endswith(':timestamp')]
+        for first, resolvers in yaml.SafeLoader.yaml_implicit_resolvers.items()}
+    return JsonKindsLoader
+
+
+def _check_json_kinds(value: Any) -> None:
+    """YamlError at the first value JSON cannot hold (binary, a set, a key that is not
+    text); iterative, and the text is at most ``MAX_YAML_BYTES``."""
+    stack: list[tuple[Any, str]] = [(value, '')]
+    while stack:
+        item, where = stack.pop()
+        if isinstance(item, dict):
+            for k, v in item.items():
+                if not isinstance(k, str):
+                    raise YamlError(f'{_name(where)} has a key that is not text '
+                                    f'({quoted(str(k))}); quote it')
+                stack.append((v, join(where, k)))
+        elif isinstance(item, list):
+            stack.extend((v, join(where, i)) for i, v in enumerate(item))
+        elif not (item is None or isinstance(item, (str, int, float, bool))):
+            kind = {bytes: 'binary data', set: 'a set'}.get(type(item), type(item).__name__)
+            raise YamlError(f'{_name(where)} is {kind}, which JSON does not have')
 
 
 def _leaf(value: Any) -> Any:

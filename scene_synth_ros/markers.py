@@ -4,21 +4,23 @@ The ROS node copies each ``MarkerSpec`` field into a ``visualization_msgs/Marker
 the geometry here lets it be tested without a ROS installation. Units and frames follow
 REP-103 and ``scene.py``: metres, z up, yaw about +z, an object's front along its local +x.
 Colours come from ``plot`` so that RViz and the top-down PNGs agree.
+
+With ``style='mesh'`` an object is its catalog model's mesh as shipped in the package
+(``package://scene_synth_ros/meshes/<model id>.obj``, see ``meshes.shipped``), which RViz
+resolves on any machine where the package is installed; the marker's scale stretches it onto
+the object's box when the object's size is not the model's.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 import math
-from pathlib import Path
-import threading
 
 from matplotlib.colors import to_rgba
 import shapely
 
 from . import plot
 from .export import WALL_THICKNESS, wall_boxes
-from .files import safe_name, writing_together
-from .meshes import export_model, variant_for
+from .meshes import mesh_scale, package_uri, shipped_variant
 from .scene import Opening, PlacedObject, Room, Scene
 
 MARKER_STYLES = ('cube', 'mesh')
@@ -79,34 +81,6 @@ WINDOW_RGBA = _floats(to_rgba(plot.WINDOW_GLASS_COLOR, 0.4), 4, 'color')
 LABEL_RGBA = (1.0, 1.0, 1.0, 1.0)
 
 
-class MeshCache:
-    """Writes catalog meshes as OBJ (+.mtl) files on first use into a directory and returns
-    file:// URIs."""
-
-    def __init__(self, directory: str | Path):
-        self.directory = Path(directory).resolve()
-        self._uris: dict[str, str] = {}
-        self._lock = threading.Lock()
-
-    def uri(self, obj: PlacedObject) -> str:
-        """The file:// URI of the OBJ file showing ``obj`` (its variant at its size)."""
-        variant = variant_for(obj)
-        with self._lock:
-            if variant.model_id not in self._uris:
-                path = self.directory / f'{safe_name(variant.model_id)}.obj'
-                if not (path.exists() and path.with_suffix('.mtl').exists()):
-                    self._write(variant, path)
-                self._uris[variant.model_id] = path.as_uri()
-            return self._uris[variant.model_id]
-
-    @staticmethod
-    def _write(variant, path: Path) -> None:
-        # The OBJ names its .mtl, so the .mtl goes in first.
-        path.parent.mkdir(parents=True, exist_ok=True)
-        with writing_together(path.parent, [path.with_suffix('.mtl').name, path.name]) as tmp:
-            export_model(variant, tmp / path.name)
-
-
 def _floor_marker(room: Room) -> MarkerSpec:
     points = []
     for tri in shapely.constrained_delaunay_triangles(room.polygon).geoms:
@@ -130,15 +104,26 @@ def _opening_marker(room: Room, op: Opening, ns: str, k: int, color: RGBA) -> Ma
                       (op.width, OPENING_THICKNESS, op.height), color)
 
 
-def scene_markers(scene: Scene, style: str = 'cube',
-                  meshes: MeshCache | None = None) -> list[MarkerSpec]:
+def _object_marker(obj: PlacedObject, k: int, style: str) -> MarkerSpec:
+    x, y, z = obj.position
+    variant = shipped_variant(obj) if style == 'mesh' else None
+    if variant is None:   # cube style, or a category without any mesh: a box
+        return MarkerSpec(obj.category, k, 'cube', (x, y, z + obj.height / 2), obj.yaw,
+                          (obj.depth, obj.width, obj.height), category_color(obj.category))
+    # Catalog meshes have their origin at the bottom centre, so the pose is the base; the
+    # scale (in the mesh's axes: depth, width, height) stretches the model onto the object.
+    return MarkerSpec(obj.category, k, 'mesh', (x, y, z), obj.yaw, mesh_scale(obj, variant),
+                      category_color(obj.category), mesh_resource=package_uri(variant.model_id))
+
+
+def scene_markers(scene: Scene, style: str = 'cube') -> list[MarkerSpec]:
     """The markers of a room and its objects: floor, walls, doors, windows, one marker per
-    object (a box, or its catalog mesh with ``style='mesh'``) and one label per object."""
+    object (a box, or with ``style='mesh'`` its catalog mesh shipped in the package, as a
+    ``package://`` URI that RViz resolves on any machine with the package) and one label per
+    object."""
     if style not in MARKER_STYLES:
         raise ValueError(f'unknown marker style {style!r}; use one of '
                          f'{", ".join(MARKER_STYLES)}')
-    if style == 'mesh' and meshes is None:
-        raise ValueError("marker style 'mesh' needs a MeshCache to write the mesh files to")
     room = scene.room
     out = [_floor_marker(room)]
     out += [MarkerSpec('walls', k, 'cube', b.centre, b.yaw, b.size, WALL_RGBA)
@@ -149,16 +134,7 @@ def scene_markers(scene: Scene, style: str = 'cube',
     seen: dict[str, int] = {}
     for obj in scene.objects:
         k = seen[obj.category] = seen.get(obj.category, -1) + 1
-        x, y, z = obj.position
-        if style == 'cube':
-            out.append(MarkerSpec(obj.category, k, 'cube', (x, y, z + obj.height / 2), obj.yaw,
-                                  (obj.depth, obj.width, obj.height),
-                                  category_color(obj.category)))
-        else:
-            # Catalog meshes have their origin at the bottom centre, so the pose is the base.
-            out.append(MarkerSpec(obj.category, k, 'mesh', (x, y, z), obj.yaw, (1.0, 1.0, 1.0),
-                                  category_color(obj.category),
-                                  mesh_resource=meshes.uri(obj)))
+        out.append(_object_marker(obj, k, style))
     out += [MarkerSpec('labels', i, 'text', (o.position[0], o.position[1], o.top + LABEL_HEIGHT),
                        0.0, (0.0, 0.0, LABEL_HEIGHT), LABEL_RGBA, text=f'{o.id}')
             for i, o in enumerate(scene.objects)]

@@ -3,15 +3,15 @@
     ros2 run scene_synth_ros scene_synth_node [--ros-args -p room_type:=office ...]
     python -m scene_synth_ros.node [--ros-args ...]        (without the ros2 tools)
 
-Subscriptions ~/room_layout (std_msgs/String, JSON) and ~/room_polygon
+Subscriptions ~/room_layout (std_msgs/String, JSON or YAML) and ~/room_polygon
 (geometry_msgs/PolygonStamped); publications ~/markers, ~/poses, ~/scene (reliable, transient
-local) and /diagnostics; services ~/next_object, ~/generate, ~/reset (std_srvs/Trigger, JSON in
-``message``). This module only converts between messages and the server's calls.
+local) and /diagnostics; services ~/next_object, ~/generate, ~/reset, ~/suggest
+(std_srvs/Trigger, JSON in ``message``). This module only converts between messages and the
+server's calls.
 """
 from __future__ import annotations
 
 import math
-from pathlib import Path
 import signal
 import sys
 import threading
@@ -36,9 +36,17 @@ from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker, MarkerArray
 
 from .errors import SceneSynthError, sentence
-from .markers import MeshCache, scene_markers
+from .markers import scene_markers
 from .ros_client import LATCHED, RELIABLE
-from .server import PARAMETERS, ConfigError, SceneServer, Served, ServerConfig, Status
+from .server import (
+    PARAMETERS,
+    REQUESTS,
+    ConfigError,
+    SceneServer,
+    Served,
+    ServerConfig,
+    Status,
+)
 
 NODE_NAME = 'scene_synth_node'
 EXIT_STARTUP_FAILED = 1
@@ -58,6 +66,9 @@ def _descriptor(name: str) -> ParameterDescriptor:
     text, limits, read_only = PARAMETERS[name]
     d = ParameterDescriptor(description=text, read_only=read_only)
     if isinstance(limits, tuple) and limits and isinstance(limits[0], float):
+        # `ros2 param set location_temperature 1` sends an integer: rclpy refuses a type
+        # change unless typing is dynamic, and the server reads whole numbers as floats.
+        d.dynamic_typing = True
         d.floating_point_range = [FloatingPointRange(from_value=limits[0], to_value=limits[1])]
     elif isinstance(limits, tuple) and limits and isinstance(limits[0], int):
         d.integer_range = [IntegerRange(from_value=limits[0], to_value=limits[1], step=1)]
@@ -83,6 +94,7 @@ class SceneSynthNode(Node):
     def __init__(self, **kwargs):
         super().__init__(NODE_NAME, **kwargs)
         defaults = ServerConfig()
+        self._updating_seed = threading.local()     # the node's own update of ``seed``
         try:
             for name in PARAMETERS:
                 self.declare_parameter(name, getattr(defaults, name), _descriptor(name))
@@ -91,11 +103,9 @@ class SceneSynthNode(Node):
         config = ServerConfig(**{n: self.get_parameter(n).value for n in PARAMETERS})
         try:
             self.server = SceneServer(config, self._publish_room, self._publish_diagnostics,
-                                      self._log)
+                                      self._log, self._show_next_seed)
         except SceneSynthError as e:
             raise StartupError(str(e)) from None
-        self._meshes = MeshCache(Path(config.mesh_dir).expanduser() if config.mesh_dir
-                                 else Path.home() / '.cache' / 'scene_synth_ros' / 'meshes')
         self.add_on_set_parameters_callback(self._on_parameters)
 
         inputs = MutuallyExclusiveCallbackGroup()
@@ -108,7 +118,7 @@ class SceneSynthNode(Node):
                                  callback_group=inputs)
         self.create_subscription(PolygonStamped, '~/room_polygon', self._on_polygon, RELIABLE,
                                  callback_group=inputs)
-        for kind in ('next_object', 'generate', 'reset'):
+        for kind in REQUESTS:
             self.create_service(Trigger, f'~/{kind}', self._service(kind),
                                 callback_group=services)
         self.create_timer(1.0, self._publish_diagnostics,
@@ -133,12 +143,29 @@ class SceneSynthNode(Node):
         return call
 
     def _on_parameters(self, params: list[Parameter]) -> SetParametersResult:
+        # Parameters the node does not own (use_sim_time, what rclpy declares) pass through
+        # to rclpy; so does the node's own update of ``seed`` after a request took one.
+        ours = {p.name: p.value for p in params if p.name in PARAMETERS
+                and not (p.name == 'seed' and getattr(self._updating_seed, 'on', False))}
+        if not ours:
+            return SetParametersResult(successful=True)
         try:
-            self.server.reconfigure({p.name: p.value for p in params})
+            self.server.reconfigure(ours)
         except ConfigError as e:
             self._log('warn', f'parameter change refused: {e}')
             return SetParametersResult(successful=False, reason=str(e))
         return SetParametersResult(successful=True)
+
+    def _show_next_seed(self, seed: int) -> None:
+        """Make the ``seed`` parameter read as the seed the next request will use."""
+        self._updating_seed.on = True
+        try:
+            # What the server holds now: a user's change meanwhile wins over ``seed``.
+            self.set_parameters([Parameter('seed', value=self.server.next_seed)])
+        except Exception:       # the context is going away during shutdown
+            pass
+        finally:
+            self._updating_seed.on = False
 
     # ---- outputs --------------------------------------------------------------------------
     def _publish_room(self, served: Served) -> None:
@@ -148,7 +175,7 @@ class SceneSynthNode(Node):
         clear = Marker(action=Marker.DELETEALL)
         clear.header.frame_id, clear.header.stamp = cfg.frame_id, stamp
         array.markers.append(clear)
-        for spec in scene_markers(served.scene, cfg.marker_style, self._meshes):
+        for spec in scene_markers(served.scene, cfg.marker_style):
             m = Marker(ns=spec.ns, id=spec.id, type=_KINDS[spec.kind], action=Marker.ADD)
             m.header.frame_id, m.header.stamp = cfg.frame_id, stamp
             m.pose = _pose(spec.position, spec.yaw)
@@ -167,9 +194,10 @@ class SceneSynthNode(Node):
         self.poses_pub.publish(poses)
         self.scene_pub.publish(String(data=served.json))
         added = f', {len(served.added)} added in {served.seconds:.2f} s' if served.added else ''
+        seed = '' if served.seed is None else f' (seed {served.seed})'
         self.get_logger().info(
             f'{served.source}: {served.scene.room.room_type} with {len(served.scene)} objects'
-            f'{added} (seed {served.seed})')
+            f'{added}{seed}')
 
     def _publish_diagnostics(self, status: Status | None = None) -> None:
         status = status or self.server.status
@@ -201,7 +229,59 @@ class SceneSynthNode(Node):
         super().destroy_node()
 
 
+def usage() -> str:
+    """What ``scene_synth_node --help`` prints: how to run it, its parameters, topics and
+    services."""
+    defaults = ServerConfig()
+    lines = [f'usage: ros2 run scene_synth_ros {NODE_NAME} [--ros-args -p NAME:=VALUE ... '
+             f'--params-file FILE -r __ns:=/NAMESPACE]',
+             '',
+             'Furnishes empty rooms (Ritchie et al., CVPR 2019). Names starting with ~/ are',
+             f'under the node: /{NODE_NAME}/... by default.',
+             '', 'parameters (default; ros2 param describe tells more):']
+    for name, (text, _, read_only) in PARAMETERS.items():
+        value = getattr(defaults, name)
+        shown = str(value).lower() if isinstance(value, bool) else repr(value) \
+            if isinstance(value, str) else value
+        lines.append(f'  {name} ({shown}{", read-only" if read_only else ""}): {text}')
+    lines += ['', 'subscriptions:',
+              '  ~/room_layout   std_msgs/String: a room layout as JSON or YAML '
+              '(msg_schemas/room_layout.schema.json)',
+              '  ~/room_polygon  geometry_msgs/PolygonStamped: a floor outline of room_type',
+              '', 'publications:',
+              '  ~/scene         std_msgs/String: the furnished room as JSON',
+              '  ~/markers       visualization_msgs/MarkerArray',
+              '  ~/poses         geometry_msgs/PoseArray: one pose per object',
+              '                  (these three reliable and transient local, depth 1)',
+              '  /diagnostics    diagnostic_msgs/DiagnosticArray, once a second',
+              '', 'services (std_srvs/Trigger; the answer is JSON in message):',
+              '  ~/generate      furnish the current room again from empty, with the next seed',
+              '  ~/next_object   insert one object (of next_category, if set)',
+              '  ~/suggest       propose `suggestions` objects, changing nothing',
+              '  ~/reset         remove every object']
+    return '\n'.join(lines)
+
+
+def _command_line(args: list[str] | None) -> int | None:
+    """Handle what is not a ROS argument: --help prints the usage (exit 0); anything else is
+    a mistake said in one line (exit 2). None when there is nothing to handle."""
+    from rclpy.utilities import remove_ros_args
+    rest = remove_ros_args(sys.argv if args is None else ['scene_synth_node', *args])[1:]
+    if not rest:
+        return None
+    if rest[0] in ('-h', '--help'):
+        print(usage())
+        return 0
+    print(f'{NODE_NAME}: unexpected argument {rest[0]!r}; parameters and remappings go after '
+          f'--ros-args (e.g. {NODE_NAME} --ros-args -p room_type:=office); --help lists them',
+          file=sys.stderr)
+    return 2
+
+
 def main(args: list[str] | None = None) -> int:
+    handled = _command_line(args)
+    if handled is not None:
+        return handled
     # SIGINT and SIGTERM only raise a flag that the spin loop checks: letting rclpy's own
     # handlers shut the context down under a multi-threaded executor races with its wait set.
     stop = threading.Event()

@@ -47,6 +47,11 @@ def config_dir() -> Path:
     return share_dir() / 'config'
 
 
+def meshes_dir() -> Path:
+    """The catalog meshes that markers refer to as ``package://scene_synth_ros/meshes/...``."""
+    return share_dir() / 'meshes'
+
+
 def default_config_path() -> Path:
     return config_dir() / 'compact.yaml'
 

@@ -14,6 +14,7 @@ import subprocess
 import sys
 import time
 from typing import Any
+import uuid
 
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Point32, PolygonStamped, PoseArray
@@ -40,6 +41,9 @@ LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
 # Room layouts in and diagnostics out: none may be lost.
 RELIABLE = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
 TOPICS = {'scene': String, 'markers': MarkerArray, 'poses': PoseArray}
+# The node's std_srvs/Trigger services (``server.REQUESTS``; this module does not import the
+# library behind the node).
+SERVICES = ('generate', 'next_object', 'reset', 'suggest')
 
 
 class ClientError(SceneSynthError):
@@ -74,7 +78,7 @@ class SceneSynthClient:
         self._polygon_pub = self.node.create_publisher(
             PolygonStamped, f'{self.target}/room_polygon', RELIABLE)
         self._services = {k: self.node.create_client(Trigger, f'{self.target}/{k}')
-                          for k in ('next_object', 'generate', 'reset')}
+                          for k in SERVICES}
         self._params = AsyncParameterClient(self.node, self.target)
 
     def _keeper(self, topic: str):
@@ -146,16 +150,16 @@ class SceneSynthClient:
             return None
         return self.spin_until(mine, timeout, 'diagnostics')
 
-    def wait_scene(self, after: int, timeout: float = 60.0, room=None) -> dict[str, Any]:
-        """The first scene received after ``after`` scenes (and, if given, of ``room``)."""
-        from .schema import parse_scene
-
+    def wait_scene(self, after: int, timeout: float = 60.0,
+                   request_id: str | None = None) -> dict[str, Any]:
+        """The first scene received after ``after`` scenes (and, if given, the one that
+        answers the layout of ``request_id``)."""
         def arrived():
             for seq, _, msg in self.received['scene']:
                 if seq <= after:
                     continue
                 d = json.loads(msg.data)
-                if room is None or parse_scene(d).room == room:
+                if request_id is None or d.get('meta', {}).get('request_id') == request_id:
                     return d
             return None
         return self.spin_until(arrived, timeout, 'scene')
@@ -163,26 +167,32 @@ class SceneSynthClient:
     # ---- requests -------------------------------------------------------------------------
     def publish_layout(self, layout: str | dict, wait: bool = True, timeout: float = 60.0,
                        check: bool = True) -> dict[str, Any] | None:
-        """Publish a room layout; with ``wait``, return the scene the node answers with.
+        """Publish a room layout (JSON or YAML text, or a dict); with ``wait``, return the
+        scene the node answers with.
 
         With ``check`` the layout is validated here first, so bad input fails at once with
-        the same sentence the node would log."""
+        the same sentence the node would log. A valid layout without a ``request_id`` is
+        sent as JSON with a new one; the answer is the scene that carries it."""
+        from .schema import SceneValidationError, parse_room_layout, read_payload
         text = layout if isinstance(layout, str) else json.dumps(layout)
-        room = None
-        if check or wait:
-            from .schema import SceneValidationError, parse_room_layout
-            try:
-                room = parse_room_layout(text).room
-            except SceneValidationError as e:
-                if check:
-                    raise ClientError(f'the layout is invalid: {e}') from None
+        request_id = None
+        try:
+            parse_room_layout(text)
+            d = read_payload(text)
+            request_id = d.get('request_id')
+            if request_id is None:
+                request_id = d['request_id'] = uuid.uuid4().hex
+                text = json.dumps(d)
+        except SceneValidationError as e:
+            if check:
+                raise ClientError(f'the layout is invalid: {e}') from None
         self.spin_until(lambda: self._layout_pub.get_subscription_count() > 0, timeout,
                         'subscription to room_layout')
         before = self.count('scene')
         self._layout_pub.publish(String(data=text))
         if not wait:
             return None
-        return self.wait_scene(before, timeout, room)
+        return self.wait_scene(before, timeout, request_id)
 
     def publish_polygon(self, points, frame_id: str = 'map') -> None:
         msg = PolygonStamped()
@@ -192,9 +202,14 @@ class SceneSynthClient:
                         'subscription to room_polygon')
         self._polygon_pub.publish(msg)
 
+    def call_async(self, service: str):
+        """Send a call of one of ``SERVICES`` without waiting: the rclpy future, which
+        completes while this client spins."""
+        return self._services[service].call_async(Trigger.Request())
+
     def call(self, service: str, timeout: float = 120.0,
              retry_busy: bool = True) -> tuple[bool, str]:
-        """Call ``next_object``, ``generate`` or ``reset``: (success, message). A "busy"
+        """Call one of ``SERVICES``: (success, message). A "busy"
         answer (the node already has ``max_pending`` calls waiting) is retried after a
         growing, jittered pause until ``timeout``, unless ``retry_busy`` is off."""
         client = self._services[service]
@@ -202,7 +217,7 @@ class SceneSynthClient:
         self.spin_until(client.service_is_ready, min(timeout, 30.0), f'{service} service')
         pause = 0.05
         while True:
-            future = client.call_async(Trigger.Request())
+            future = self.call_async(service)
             self.spin_until(future.done, max(deadline - time.monotonic(), 0.0),
                             f'{service} response')
             response = future.result()
@@ -212,6 +227,40 @@ class SceneSynthClient:
             until = time.monotonic() + pause * (0.5 + random.random())
             self.spin_until(lambda u=until: time.monotonic() > u, pause * 2, 'pause')
             pause = min(pause * 2, 0.5)
+
+    # The services take no arguments (std_srvs/Trigger): what shapes a request is the node's
+    # parameters, set just before the call.
+    def generate(self, seed: int | None = None, timeout: float = 120.0) -> dict[str, Any]:
+        """Furnish the current room again from empty, with ``seed`` or the node's next one;
+        the answer's JSON (seed, objects, added, ...)."""
+        return self._call_with({'seed': seed} if seed is not None else {}, 'generate',
+                               timeout)
+
+    def next_object(self, category: str | None = None,
+                    timeout: float = 120.0) -> dict[str, Any]:
+        """Insert one object, of ``category`` or of the category module's choice; the new
+        object as a dict."""
+        return self._call_with({'next_category': category or ''}, 'next_object', timeout)
+
+    def suggest(self, k: int | None = None, timeout: float = 120.0) -> list[dict[str, Any]]:
+        """``k`` (or the node's ``suggestions``) proposals for the next object, as dicts;
+        the room does not change."""
+        answer = self._call_with({'suggestions': k} if k is not None else {}, 'suggest',
+                                 timeout)
+        return answer['objects']
+
+    def reset(self, timeout: float = 120.0) -> dict[str, Any]:
+        """Remove every object from the current room."""
+        return self._call_with({}, 'reset', timeout)
+
+    def _call_with(self, params: dict[str, Any], service: str, timeout: float) -> Any:
+        refused = self.set_parameters(params, timeout) if params else []
+        if refused:
+            raise ClientError(f'the node refused {refused[0]}')
+        ok, message = self.call(service, timeout)
+        if not ok:
+            raise ClientError(f'{service} refused: {message}')
+        return json.loads(message)
 
     def get_parameters(self, names: list[str], timeout: float = 10.0) -> dict[str, Any]:
         self.spin_until(lambda: self._params.services_are_ready(), timeout, 'parameter services')
@@ -270,9 +319,11 @@ def format_poses(msg: PoseArray) -> str:
 
 
 # ---- the node as a child process ---------------------------------------------------------
-def node_command(params: dict[str, Any] | None = None,
-                 params_file: str | None = None) -> list[str]:
+def node_command(params: dict[str, Any] | None = None, params_file: str | None = None,
+                 namespace: str = '') -> list[str]:
     cmd = [sys.executable, '-m', 'scene_synth_ros.node', '--ros-args']
+    if namespace:
+        cmd += ['-r', f'__ns:={namespace}']
     if params_file:
         cmd += ['--params-file', str(params_file)]
     for k, v in (params or {}).items():
@@ -290,9 +341,10 @@ def node_env(domain_id: int) -> dict[str, str]:
 
 
 def start_node(domain_id: int, params: dict[str, Any] | None = None, log=None,
-               params_file: str | None = None) -> subprocess.Popen:
+               params_file: str | None = None, namespace: str = '') -> subprocess.Popen:
     """Start ``scene_synth_node`` in a child process on ``domain_id``."""
-    return subprocess.Popen(node_command(params, params_file), env=node_env(domain_id),
+    return subprocess.Popen(node_command(params, params_file, namespace),
+                            env=node_env(domain_id),
                             stdout=log or subprocess.DEVNULL,
                             stderr=subprocess.STDOUT if log else subprocess.DEVNULL)
 

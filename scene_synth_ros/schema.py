@@ -28,6 +28,7 @@ import json
 import math
 import os
 from pathlib import Path
+import re
 from typing import Any, Iterable
 
 import numpy as np
@@ -37,7 +38,7 @@ from . import catalog
 from .categories import CATEGORIES, ROOM_TYPES, RoomTypeSpec, resolve_room_type, room_spec
 from .errors import SceneSynthError, UnknownRoomType, number, quoted, with_article
 from .files import write_atomic
-from .limits import LimitExceeded, check_tree, join, loads
+from .limits import LimitExceeded, YamlError, check_tree, join, loads, loads_yaml
 from .paths import schema_dir
 from .render import RoomDoesNotFit, room_frame_box
 from .scene import Opening, PlacedObject, Room, Scene, ccw
@@ -148,9 +149,9 @@ def _tree(value: Any) -> Any:
     return _plain(value)
 
 
-def _load(text_or_dict: Any) -> Any:
+def _load(text_or_dict: Any, yaml_ok: bool = False) -> Any:
     """The payload as plain JSON values, within ``limits`` (the type of the top level is
-    checked by the schema)."""
+    checked by the schema). With ``yaml_ok``, text that is not JSON is read as YAML."""
     if isinstance(text_or_dict, (bytes, bytearray, str)):
         try:
             text_or_dict = loads(text_or_dict)
@@ -161,9 +162,10 @@ def _load(text_or_dict: Any) -> Any:
                 f'the payload is not valid UTF-8 text: byte {e.start} cannot be decoded',
                 '') from None
         except json.JSONDecodeError as e:
-            raise SceneValidationError(
-                f'the payload is not valid JSON: {e.msg} at line {e.lineno} column {e.colno}',
-                '') from None
+            if not yaml_ok:
+                raise SceneValidationError(f'the payload is not valid JSON: {_where(e)}',
+                                           '') from None
+            text_or_dict = _load_yaml(e.doc, e)
         except RecursionError:
             raise SceneValidationError('the payload is not valid JSON: it is nested too deeply',
                                        '') from None
@@ -172,6 +174,33 @@ def _load(text_or_dict: Any) -> Any:
         return _tree(text_or_dict)
     raise SceneValidationError(
         f'the payload must be JSON text or a dict, got {type(text_or_dict).__name__}', '')
+
+
+def _where(e: json.JSONDecodeError) -> str:
+    return f'{e.msg} at line {e.lineno} column {e.colno}'
+
+
+# What a person who typed a Python dict (or pasted one: ``ros2 topic pub`` turns an unquoted
+# mapping into one) needs to hear.
+PYTHON_DICT_HINT = ("it reads as a Python dict: send JSON in single quotes, "
+                    "data: '{\"room_type\": \"bedroom\", ...}'")
+
+
+def looks_like_python_dict(text: Any) -> bool:
+    """Whether ``text`` starts like a Python dict's repr (single-quoted keys), which is what
+    a mapping given to ``ros2 topic pub`` for a string field arrives as."""
+    return isinstance(text, str) and re.match(r"\s*\{\s*'[^']{0,200}'\s*:", text) is not None
+
+
+def _load_yaml(text: str, json_error: json.JSONDecodeError) -> Any:
+    try:
+        return loads_yaml(text)
+    except LimitExceeded as e:
+        raise SceneValidationError(str(e), e.path) from None
+    except YamlError as e:
+        hint = f'; {PYTHON_DICT_HINT}' if looks_like_python_dict(text) else ''
+        raise SceneValidationError(f'the payload is neither JSON ({_where(json_error)}) nor '
+                                   f'YAML ({e}){hint}', '') from None
 
 
 @lru_cache(maxsize=None)
@@ -520,7 +549,7 @@ def _layout_to_scene(d: Any) -> Scene:
     room = _build_room(d, '')
     items = d.get('objects', [])
     objects = _build_objects(items, room, 'objects')
-    return Scene(room, objects)
+    return Scene(room, objects, {'request_id': d['request_id']} if 'request_id' in d else {})
 
 
 def _scene_from_dict(d: Any) -> Scene:
@@ -531,12 +560,26 @@ def _scene_from_dict(d: Any) -> Scene:
 
 
 def parse_room_layout(text_or_dict: Any) -> Scene:
-    """A room layout (JSON text, bytes or dict), possibly with objects, as a validated Scene.
+    """A room layout (JSON or YAML text, bytes or dict), possibly with objects, as a
+    validated Scene.
 
     Missing object ids are assigned with ``Scene.new_id`` and missing model ids with
-    ``catalog.nearest``; the room type becomes its canonical name. The scene's meta is empty.
+    ``catalog.nearest``; the room type becomes its canonical name. The scene's meta holds
+    the layout's ``request_id``, if it has one, and nothing else.
     """
-    return _layout_to_scene(_load(text_or_dict))
+    d = _load(text_or_dict, yaml_ok=True)
+    try:
+        return _layout_to_scene(d)
+    except SceneValidationError as e:
+        if looks_like_python_dict(text_or_dict):
+            raise SceneValidationError(f'{e}; {PYTHON_DICT_HINT}', e.path) from None
+        raise
+
+
+def read_payload(text_or_dict: Any) -> Any:
+    """JSON or YAML text (or a dict) as plain JSON values within ``limits``, before any
+    schema check (SceneValidationError otherwise)."""
+    return _load(text_or_dict, yaml_ok=True)
 
 
 def parse_scene(text_or_dict: Any) -> Scene:
@@ -549,7 +592,7 @@ def load_scene(path: str | os.PathLike) -> Scene:
 
     I/O errors (a missing file, ...) propagate as OSError.
     """
-    d = _load(Path(path).read_text(encoding='utf-8'))
+    d = _load(Path(path).read_text(encoding='utf-8'), yaml_ok=True)
     if isinstance(d, dict) and 'room' not in d:
         return _layout_to_scene(d)
     return _scene_from_dict(d)

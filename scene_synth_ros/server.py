@@ -21,8 +21,8 @@ import threading
 import time
 from typing import Any, Callable
 
-from .categories import ROOM_TYPES, resolve_room_type
-from .errors import SceneSynthError, UnknownRoomType, sentence
+from .categories import CATEGORIES, ROOM_TYPE_ALIASES, ROOM_TYPES, resolve_room_type
+from .errors import SceneSynthError, UnknownRoomType, quoted, sentence, with_article
 from .files import write_atomic
 from .markers import MARKER_STYLES
 from .networks.config import resolve_device
@@ -50,16 +50,20 @@ class ServerConfig:
     auto_generate: bool = True          # furnish as soon as a layout arrives
     wall_height: float = 2.6            # for rooms that arrive as a bare polygon
     export_dir: str = ''                # '' = no export; else JSON + SDF + glTF per room
-    mesh_dir: str = ''                  # '' = ~/.cache/scene_synth_ros/meshes
     torch_threads: int = 1              # 1 beat 2 on 2 cores beside a client (bench_node)
     max_pending: int = 4                # service calls that may wait for the worker
+    next_category: str = ''             # what ~/next_object inserts; '' = the model decides
+    suggestions: int = 5                # proposals in a ~/suggest answer
 
 
 # name -> (description, numeric range or allowed strings, read only). The node builds its
 # parameter descriptors from this table, and ``check`` enforces the same limits.
 PARAMETERS: dict[str, tuple[str, Any, bool]] = {
-    'room_type': ('room type of layouts arriving on ~/room_polygon', ROOM_TYPES, False),
-    'seed': ('seed of the next furnishing; each room served takes the next integer',
+    'room_type': ('room type of layouts arriving on ~/room_polygon: '
+                  + ', '.join(ROOM_TYPES) + ' (also accepted: '
+                  + ', '.join(f"'{a}'" for a in ROOM_TYPE_ALIASES) + ')', ROOM_TYPES, False),
+    'seed': ('seed of the next room, object or suggestion; reads as the one the next request '
+             'will use (each request takes the next integer); set it to replay a room',
              (0, 2**31 - 1), False),
     'location_temperature': ('temperature of the location distribution (paper: 0.8)',
                              (0.05, 5.0), False),
@@ -74,12 +78,14 @@ PARAMETERS: dict[str, tuple[str, Any, bool]] = {
     'wall_height': ('wall height of rooms arriving on ~/room_polygon (m)', (1.8, 6.0), False),
     'export_dir': ("write every room served as JSON, SDF and glTF here; '' = off", None,
                    False),
-    'mesh_dir': ("where catalog meshes for mesh markers are written; '' = user cache", None,
-                 True),
     'torch_threads': ('CPU threads torch may use', (1, 64), True),
     'max_pending': ('service calls that may wait for the worker; one more is answered '
                     '"busy" at once', (1, 6), False),
+    'next_category': ("category of the objects ~/next_object inserts (e.g. office_chair); "
+                      "'' = the category module chooses", None, False),
+    'suggestions': ('how many proposals ~/suggest answers with', (1, 20), False),
 }
+REQUESTS = ('generate', 'next_object', 'reset', 'suggest')
 
 
 class ConfigError(SceneSynthError, ValueError):
@@ -128,9 +134,14 @@ def _check_text(name: str, value: Any, limits) -> str:
             resolve_device(value)
         except ValueError as e:
             raise ConfigError(str(e)) from None
+    if name == 'next_category' and value:
+        value = ' '.join(value.replace('_', ' ').lower().split())     # office_chair too
+        if value not in CATEGORIES:
+            raise ConfigError(f'next_category {quoted(value)} is not a category '
+                              f'(`scene-synth catalog list` shows them)')
     if name == 'frame_id' and (not value or any(c.isspace() for c in value)):
         raise ConfigError(f'frame_id must be a non-empty name without spaces, got {value!r}')
-    if name in ('export_dir', 'mesh_dir') and value:
+    if name == 'export_dir' and value:
         p = Path(value).expanduser()
         try:
             p.mkdir(parents=True, exist_ok=True)
@@ -146,7 +157,7 @@ class Served:
     """A room handed to the publisher: the scene and how it came about."""
 
     scene: Scene
-    source: str                          # 'layout', 'generate', 'next_object' or 'reset'
+    source: str           # 'room_layout', 'room_polygon', 'generate', 'next_object', 'reset'
     seed: int | None
     added: list[PlacedObject] = field(default_factory=list)
     seconds: float = 0.0
@@ -191,9 +202,10 @@ class Status:
 
 @dataclass
 class _Job:
-    kind: str                             # 'layout', 'generate', 'next_object', 'reset'
+    kind: str                             # 'layout' or one of REQUESTS
     epoch: int
     scene: Scene | None = None
+    source: str = ''                      # where a layout came from: the topic's name
     done: threading.Event = field(default_factory=threading.Event)
     ok: bool = False
     message: str = ''
@@ -204,19 +216,23 @@ class SceneServer:
     """The current room and the worker that furnishes it.
 
     ``publish(served)`` is called from the worker thread with every complete room;
-    ``on_status(status)`` whenever the status changes. Construction loads and checks every
-    room type's weights and raises ``BundleError`` (naming the file) or ``ConfigError``.
+    ``on_status(status)`` whenever the status changes; ``on_seed(seed)`` whenever the seed
+    the next request will use changes (not when ``reconfigure`` sets it). Construction
+    loads and checks every room type's weights and raises ``BundleError`` (naming the file)
+    or ``ConfigError``.
     """
 
     def __init__(self, config: ServerConfig, publish: Callable[[Served], None],
                  on_status: Callable[[Status], None] | None = None,
-                 log: Callable[[str, str], None] | None = None):
+                 log: Callable[[str, str], None] | None = None,
+                 on_seed: Callable[[int], None] | None = None):
         for f in fields(ServerConfig):
             setattr(config, f.name, check(f.name, getattr(config, f.name)))
         self.config = config
         self._publish = publish
         self._on_status = on_status or (lambda s: None)
         self._logger = log or (lambda level, text: None)
+        self._on_seed = on_seed or (lambda seed: None)
         import torch
         torch.set_num_threads(config.torch_threads)
         self._synth = self._load(config.weights_dir, config.device)
@@ -273,7 +289,7 @@ class SceneServer:
             return False
         with self._lock:
             self._epoch += 1
-            job = _Job('layout', self._epoch, scene)
+            job = _Job('layout', self._epoch, scene, source)
         self._queue.put(job)
         return True
 
@@ -291,9 +307,9 @@ class SceneServer:
         return self.submit_layout(layout, 'room_polygon')
 
     def request(self, kind: str, timeout: float = SERVICE_TIMEOUT) -> tuple[bool, str]:
-        """Run ``generate``, ``next_object`` or ``reset`` on the current room after what is
-        queued; returns (success, JSON text or reason)."""
-        if kind not in ('generate', 'next_object', 'reset'):
+        """Run one of ``REQUESTS`` on the current room after what is queued; returns
+        (success, JSON text or reason). ``suggest`` answers proposals and changes nothing."""
+        if kind not in REQUESTS:
             raise ValueError(f'unknown request {kind!r}')
         with self._lock:
             if self._closing:
@@ -319,6 +335,12 @@ class SceneServer:
         finally:
             with self._lock:
                 self._pending -= 1
+
+    @property
+    def next_seed(self) -> int:
+        """The seed the next request that draws will use."""
+        with self._lock:
+            return self._next_seed
 
     @property
     def scene(self) -> Scene | None:
@@ -379,14 +401,14 @@ class SceneServer:
         else:
             base = current
         if job.kind == 'reset':
-            scene = Scene(base.room, [], dict(base.meta))
+            scene = Scene(base.room, [], _answered(base.meta))
             self._commit(job, Served(scene, 'reset', base.meta.get('seed')))
             job.ok, job.message = True, '{"objects": 0}'
             return
         if job.kind == 'layout' and not cfg.auto_generate:
             scene = base.copy()
-            scene.meta = {'generator': 'scene_synth_ros', 'seed': None}
-            self._commit(job, Served(scene, 'layout', None))
+            scene.meta = {'generator': 'scene_synth_ros', 'seed': None, **base.meta}
+            self._commit(job, Served(scene, job.source, None))
             job.ok = True
             return
         synth.config = replace(synth.config, location_temperature=cfg.location_temperature,
@@ -395,7 +417,12 @@ class SceneServer:
         self._set_status(busy=True)
         try:
             if job.kind == 'next_object':
-                self._next_object(job, synth, base, seed)
+                self._next_object(job, synth, base, seed, cfg.next_category)
+                return
+            if job.kind == 'suggest':
+                found = synth.suggest(base, cfg.suggestions, seed)
+                job.ok = True
+                job.message = _json({'seed': seed, 'objects': [o.to_dict() for o in found]})
                 return
             start = Scene(base.room, []) if job.kind == 'generate' else base
             result = synth.complete(start, seed, cancel=lambda: self._stale(job))
@@ -403,11 +430,11 @@ class SceneServer:
             self._supersede(job)
             return
         except SceneSynthError as e:
-            self._reject(f'{"room_layout" if job.kind == "layout" else job.kind}: {e}')
+            self._reject(f'{job.source or job.kind}: {e}')
             job.message = str(e)
             return
-        served = Served(result.scene, job.kind, seed, result.added, result.seconds,
-                        result.stopped, result.timings)
+        served = Served(result.scene, job.source or job.kind, seed, result.added,
+                        result.seconds, result.stopped, result.timings)
         if self._commit(job, served):
             job.ok = True
             job.message = _json({'seed': seed, 'objects': len(result.scene),
@@ -415,21 +442,23 @@ class SceneServer:
                                  'stopped': result.stopped,
                                  'seconds': round(result.seconds, 4)})
 
-    def _next_object(self, job: _Job, synth: Synthesizer, base: Scene, seed: int) -> None:
+    def _next_object(self, job: _Job, synth: Synthesizer, base: Scene, seed: int,
+                     category: str) -> None:
         t0 = time.perf_counter()
         try:
-            obj = synth.next_object(base, seed)
+            obj = synth.next_object(base, seed, category or None)
         except SceneSynthError as e:
             job.message = str(e)
             return
         if obj is None:
-            job.message = (f'nothing more fits: the room has {len(base)} objects'
+            what = f'no {category}' if category else 'nothing more'
+            job.message = (f'{what} fits: the room has {len(base)} objects'
                            + (' (max_objects)' if len(base) >= synth.config.max_objects
                               else ''))
             return
         scene = base.copy()
         scene.objects.append(obj)
-        scene.meta.update({'generator': 'scene_synth_ros', 'seed': seed})
+        scene.meta = {**_answered(scene.meta), 'generator': 'scene_synth_ros', 'seed': seed}
         if self._commit(job, Served(scene, 'next_object', seed, [obj],
                                    time.perf_counter() - t0)):
             job.ok, job.message = True, _json(obj.to_dict())
@@ -438,6 +467,8 @@ class SceneServer:
         with self._lock:
             seed = self._next_seed
             self._next_seed = (self._next_seed + 1) % 2**31
+            following = self._next_seed
+        self._on_seed(following)
         return seed
 
     def _commit(self, job: _Job, served: Served) -> bool:
@@ -451,7 +482,7 @@ class SceneServer:
             self._supersede(job)
             return False
         self._set_status(level=OK, message=f'{served.source}: {len(served.scene)} objects '
-                         f'in a {served.scene.room.room_type}',
+                         f'in {with_article(served.scene.room.room_type)}',
                          increment='rooms_served', objects=len(served.scene),
                          room_type=served.scene.room.room_type, seed=served.seed,
                          last_seconds=served.seconds, timings=dict(served.timings))
@@ -503,6 +534,12 @@ class SceneServer:
             self.status = replace(self.status, **changes)
             status = self.status
         self._on_status(status)
+
+
+def _answered(meta: dict) -> dict:
+    """A room's meta once a later request changes the room: the layout's request id
+    identified the room that answered it, not the ones after."""
+    return {k: v for k, v in meta.items() if k != 'request_id'}
 
 
 def _json(d: dict) -> str:

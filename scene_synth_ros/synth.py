@@ -36,7 +36,7 @@ import torch
 
 from . import catalog
 from .categories import CATEGORIES, RoomTypeSpec, resolve_room_type, room_spec
-from .errors import SceneSynthError
+from .errors import SceneSynthError, UnknownCategory, quoted
 from .geometry import (
     FLOOR_TOLERANCE,
     MIN_SUPPORT,
@@ -281,14 +281,20 @@ class Synthesizer:
                          'weights': ctx.bundle.config.name})
         return Synthesis(out, added, stopped, time.perf_counter() - t0, dict(ctx.timings))
 
-    def next_object(self, scene: Scene, seed: int = 0) -> PlacedObject | None:
-        """One more object for ``scene`` (not added to it), or None when the model says STOP
-        or nothing fits."""
+    def next_object(self, scene: Scene, seed: int = 0,
+                    category: str | None = None) -> PlacedObject | None:
+        """One more object for ``scene`` (not added to it), or None when nothing fits;
+        STOP is not drawn. With ``category``, an object of that category: the category
+        module is not asked, the other modules are (``UnknownCategory`` if the room type
+        has no such category)."""
         ctx = self._context(scene.room, seed, scene.objects)
+        if category is not None and category not in ctx.spec:
+            raise UnknownCategory(f'{quoted(category)} is not a category of '
+                                  f'{scene.room.room_type} rooms')
         if len(scene.objects) >= self.config.max_objects:
             return None
         with torch.inference_mode():
-            obj, _ = self._insert_one(ctx, scene, allow_stop=False)
+            obj, _ = self._insert_one(ctx, scene, allow_stop=False, only=category)
         return obj
 
     def suggest(self, scene: Scene, k: int = 5, seed: int = 0,
@@ -308,17 +314,20 @@ class Synthesizer:
         return found
 
     # ---- one insertion: the paper's pipeline ------------------------------------------------
-    def _insert_one(self, ctx: _Context, scene: Scene, allow_stop: bool = True
-                    ) -> tuple[PlacedObject | None, str]:
+    def _insert_one(self, ctx: _Context, scene: Scene, allow_stop: bool = True,
+                    only: str | None = None) -> tuple[PlacedObject | None, str]:
         """One step of the sequential model: the next category (or STOP) drawn from the
         category module, then an object of it; a category that no insertion fits is drawn
-        again without it (paper: Object Insertion). Returns the object, or None and why."""
+        again without it (paper: Object Insertion). ``only`` names the one category that may
+        be drawn. Returns the object, or None and why."""
         with ctx.timed('render'):
             image, small = self._top_down(ctx, scene)
             counts = self._bag_of_categories(ctx, scene)
         with ctx.timed('category'):
             category_logits = ctx.bundle.networks['category'](image, counts)[0]
         allowed = self._allowed_categories(ctx, scene, allow_stop)
+        if only is not None:
+            allowed &= torch.arange(len(allowed), device=allowed.device) == ctx.spec.index(only)
         location = None      # (logits, offsets), for the first category that is not STOP
         for _ in range(self.config.category_attempts):
             if not bool(allowed.any()):

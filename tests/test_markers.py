@@ -6,27 +6,30 @@ import math
 from pathlib import Path
 import subprocess
 import sys
-import threading
-from urllib.parse import unquote, urlparse
 
 import numpy as np
 import pytest
 from shapely.geometry import Point
+import trimesh
 
 from scene_synth_ros import catalog, plot
+from scene_synth_ros.corpus.generate import generate_room
 from scene_synth_ros.export import WALL_THICKNESS, wall_boxes
 from scene_synth_ros.markers import (
     MARKER_STYLES,
     MarkerSpec,
-    MeshCache,
     category_color,
     scene_markers,
 )
-from scene_synth_ros.paths import examples_dir
+from scene_synth_ros.meshes import MATERIALS, shipped_name, write_shipped_meshes
+from scene_synth_ros.paths import examples_dir, meshes_dir
 from scene_synth_ros.scene import PlacedObject, Scene
 from scene_synth_ros.schema import load_scene
 
 ROOM_NS = ('floor', 'walls', 'doors', 'windows')
+ROOT = Path(__file__).resolve().parent.parent
+SHIPPED = ROOT / 'meshes'                    # installed to share/scene_synth_ros/meshes
+PACKAGE_MESHES = 'package://scene_synth_ros/meshes/'
 
 
 def bedroom() -> Scene:
@@ -60,10 +63,12 @@ def by_ns(markers: list[MarkerSpec]) -> dict[str, list[MarkerSpec]]:
     return out
 
 
-def uri_path(uri: str) -> Path:
-    parsed = urlparse(uri)
-    assert parsed.scheme == 'file', uri
-    return Path(unquote(parsed.path))
+def shipped_path(uri: str) -> Path:
+    """The repository file a package://scene_synth_ros/meshes/ URI names."""
+    assert uri.startswith(PACKAGE_MESHES), uri
+    name = uri[len(PACKAGE_MESHES):]
+    assert name and '/' not in name, uri
+    return SHIPPED / name
 
 
 def triangles(marker: MarkerSpec) -> np.ndarray:
@@ -87,10 +92,33 @@ def cube_corners(m: MarkerSpec) -> np.ndarray:
                      for x, y in local])
 
 
-def obj_bounds(path: Path) -> np.ndarray:
-    verts = np.array([[float(v) for v in line.split()[1:4]]
-                      for line in path.read_text().splitlines() if line.startswith('v ')])
-    return np.array([verts.min(axis=0), verts.max(axis=0)])
+def object_markers(markers: list[MarkerSpec]) -> list[MarkerSpec]:
+    return [m for m in markers if m.ns not in ROOM_NS + ('labels',)]
+
+
+def scaled_mesh(m: MarkerSpec) -> trimesh.Trimesh:
+    """The shipped mesh of a mesh marker, loaded with trimesh and stretched by its scale (in
+    the marker's own frame, before its pose, as RViz does)."""
+    mesh = trimesh.load(shipped_path(m.mesh_resource), force='mesh', process=False)
+    return mesh.apply_scale(m.scale)
+
+
+def posed_footprint(m: MarkerSpec, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Footprint corners of the local box lo..hi put where the marker's pose puts it."""
+    c, s = math.cos(m.yaw), math.sin(m.yaw)
+    local = [(lo[0], lo[1]), (hi[0], lo[1]), (hi[0], hi[1]), (lo[0], hi[1])]
+    return np.array([(m.position[0] + c * x - s * y, m.position[1] + s * x + c * y)
+                     for x, y in local])
+
+
+def assert_mesh_covers_the_object(m: MarkerSpec, obj: PlacedObject) -> None:
+    """The scaled shipped mesh, posed by the marker, covers the object's box within 1 cm."""
+    lo, hi = scaled_mesh(m).bounds
+    assert lo == pytest.approx((-obj.depth / 2, -obj.width / 2, 0.0), abs=0.01)
+    assert hi == pytest.approx((obj.depth / 2, obj.width / 2, obj.height), abs=0.01)
+    assert posed_footprint(m, lo, hi) == pytest.approx(obj.corners(), abs=0.01)
+    assert m.position[2] + lo[2] == pytest.approx(obj.position[2], abs=0.01)
+    assert m.position[2] + hi[2] == pytest.approx(obj.top, abs=0.01)
 
 
 # ---- structure ------------------------------------------------------------------------------
@@ -129,9 +157,9 @@ def test_object_ids_count_per_category_and_labels_per_object():
         assert m.color == (1.0, 1.0, 1.0, 1.0)
 
 
-def test_every_number_is_a_finite_plain_float(tmp_path):
+def test_every_number_is_a_finite_plain_float():
     markers = (scene_markers(rich_bedroom()) + scene_markers(lshaped())
-               + scene_markers(rich_bedroom(), 'mesh', MeshCache(tmp_path)))
+               + scene_markers(rich_bedroom(), 'mesh'))
     for m in markers:
         assert m.kind in ('cube', 'mesh', 'text', 'triangle_list')
         assert type(m.id) is int
@@ -238,88 +266,107 @@ def test_category_colours_are_stable_distinct_and_shared_with_the_pictures():
     assert all(type(c) is float for c in category_color('stand'))
 
 
-def test_unknown_style_and_mesh_without_cache_raise():
+def test_unknown_style_raises():
     with pytest.raises(ValueError, match='cube.*mesh'):
         scene_markers(bedroom(), style='sphere')
-    with pytest.raises(ValueError, match='MeshCache'):
-        scene_markers(bedroom(), style='mesh')
     assert MARKER_STYLES == ('cube', 'mesh')
 
 
 # ---- meshes ---------------------------------------------------------------------------------
 
-def test_mesh_style_writes_obj_files_and_points_at_them(tmp_path):
-    scene = rich_bedroom()
-    cache = MeshCache(tmp_path / 'meshes')
-    markers = [m for m in scene_markers(scene, 'mesh', cache)
-               if m.ns not in ROOM_NS + ('labels',)]
-    assert len(markers) == len(scene.objects)
-    for m, obj in zip(markers, scene.objects, strict=True):
-        assert m.kind == 'mesh' and m.ns == obj.category
-        assert m.position == pytest.approx(obj.position)         # the base, not the centre
-        assert m.yaw == pytest.approx(obj.yaw)
+def test_every_catalog_model_has_a_shipped_mesh_equal_to_what_the_generator_writes(tmp_path):
+    # A catalog, builder or palette change without `scripts/build_meshes.py` fails here.
+    generated = {p.name: p.read_bytes() for p in write_shipped_meshes(tmp_path)}
+    shipped = {p.name: p.read_bytes() for p in SHIPPED.iterdir()}
+    assert sorted(shipped) == sorted(generated), 'run scripts/build_meshes.py and commit meshes/'
+    stale = sorted(n for n in generated if shipped[n] != generated[n])
+    assert not stale, f'{stale[:5]} differ from the generator: run scripts/build_meshes.py'
+    models = catalog.all_variants()
+    names = {shipped_name(v.model_id) for v in models}
+    assert names | {n[:-len('.obj')] + '.mtl' for n in names} == set(shipped)
+    assert len(shipped) == 2 * len(models)
+    assert meshes_dir() == SHIPPED            # what paths finds in a checkout
+
+
+def test_each_shipped_mesh_names_its_own_material_library():
+    for path in SHIPPED.glob('*.obj'):
+        lines = path.read_text().splitlines()
+        assert lines[1] == f'mtllib {path.stem}.mtl', path.name
+        used = [ln.split()[1] for ln in lines if ln.startswith('usemtl ')]
+        mtl = path.with_suffix('.mtl').read_text().splitlines()
+        assert [ln.split()[1] for ln in mtl if ln.startswith('newmtl ')] == used, path.name
+    # The library resolves beside the OBJ: trimesh reads the colours through it, as RViz's
+    # loader (assimp) does through the same package:// folder.
+    scene = trimesh.load(SHIPPED / 'stand_00.obj', process=False)
+    assert scene.geometry
+    for name, geom in scene.geometry.items():
+        assert tuple(geom.visual.material.diffuse) == MATERIALS[name].rgba
+
+
+@pytest.mark.parametrize('room_type', ['bedroom', 'living', 'office', 'bathroom'])
+def test_mesh_markers_of_a_furnished_room_are_shipped_package_meshes(room_type):
+    scene = generate_room(room_type, 0, 3)
+    markers = scene_markers(scene, 'mesh')
+    assert not [m for m in markers if 'file:' in m.mesh_resource]
+    meshes = [m for m in markers if m.kind == 'mesh']
+    assert len(meshes) == len(object_markers(markers)) == len(scene.objects) > 0
+    for m, obj in zip(meshes, scene.objects, strict=True):
+        assert m.ns == obj.category and m.color == category_color(obj.category)
+        assert m.mesh_resource == PACKAGE_MESHES + f'{obj.model_id}.obj'
+        assert shipped_path(m.mesh_resource).is_file()
+        # A catalog object at its catalog size is the mesh as it is, posed at its base.
         assert m.scale == (1.0, 1.0, 1.0)
-        assert m.color == category_color(obj.category)
-        path = uri_path(m.mesh_resource)
-        assert path.is_file() and path.suffix == '.obj'
-        assert path.parent == (tmp_path / 'meshes').resolve()
-        assert path.with_suffix('.mtl').is_file()
-        assert set(path.stem) <= set('abcdefghijklmnopqrstuvwxyz'
-                                     'ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-')
-        # The mesh shows the object at its size with its origin at the bottom centre, which
-        # is why the marker's pose is the object's base.
-        lo, hi = obj_bounds(path)
-        assert lo == pytest.approx((-obj.depth / 2, -obj.width / 2, 0.0), abs=1e-5)
-        assert hi == pytest.approx((obj.depth / 2, obj.width / 2, obj.height), abs=1e-5)
-    # stand_1 is resized (its model id has '@', 'x' and '.'), so it has its own file.
-    stands = [uri_path(m.mesh_resource) for m in markers if m.ns == 'stand']
-    assert stands[0] != stands[1]
-    assert len(list((tmp_path / 'meshes').glob('*.obj'))) == len(scene.objects)
-    assert not [p for p in (tmp_path / 'meshes').iterdir() if p.name.startswith('.tmp')]
+        assert m.position == pytest.approx(obj.position)
+        assert m.yaw == pytest.approx(obj.yaw)
+    assert_mesh_covers_the_object(meshes[0], scene.objects[0])
 
 
-def test_mesh_files_are_reused(tmp_path):
+def test_mesh_markers_keep_pose_colour_and_ids_of_the_objects():
     scene = rich_bedroom()
-    cache = MeshCache(tmp_path)
-    first = scene_markers(scene, 'mesh', cache)
-    paths = [uri_path(m.mesh_resource) for m in first if m.kind == 'mesh']
-    stats = {p: (p.stat().st_ino, p.stat().st_mtime_ns) for p in paths}
-    again = scene_markers(scene, 'mesh', cache)                      # in-memory cache
-    fresh = scene_markers(scene, 'mesh', MeshCache(tmp_path))       # files on disk
-    assert again == first and fresh == first
-    for p in paths:
-        assert (p.stat().st_ino, p.stat().st_mtime_ns) == stats[p]
+    cubes = object_markers(scene_markers(scene, 'cube'))
+    meshes = object_markers(scene_markers(scene, 'mesh'))
+    assert [(m.ns, m.id, m.color, m.yaw) for m in meshes] == \
+        [(m.ns, m.id, m.color, m.yaw) for m in cubes]
+    for m, obj in zip(meshes, scene.objects, strict=True):
+        assert m.kind == 'mesh'
+        assert m.position == pytest.approx(obj.position)        # the base, not the centre
+        assert_mesh_covers_the_object(m, obj)
 
 
-def test_model_ids_that_sanitise_alike_get_different_files(tmp_path):
-    # Unknown model ids are kept in the variant's id; '.' and '_' must not collide.
-    size = (0.4, 0.4, 0.5)
-    a = PlacedObject('stand_0', 'stand', 'custom.1', (1.0, 1.0, 0.0), 0.0, size)
-    b = PlacedObject('stand_1', 'stand', 'custom_1', (2.0, 1.0, 0.0), 0.0, size)
-    cache = MeshCache(tmp_path)
-    assert uri_path(cache.uri(a)) != uri_path(cache.uri(b))
-    assert len(list(tmp_path.glob('*.obj'))) == 2
+def test_a_resized_object_is_its_shipped_model_stretched_by_the_marker_scale():
+    v = catalog.variants('stand')[2]
+    w, d, h = v.size
+    obj = PlacedObject('stand_7', 'stand', v.model_id, (2.0, 1.5, 0.0), 0.9,
+                       (2 * w, 0.8 * d, 1.25 * h))
+    [m] = object_markers(scene_markers(Scene(bedroom().room, [obj]), 'mesh'))
+    assert m.mesh_resource == PACKAGE_MESHES + f'{v.model_id}.obj'     # no file of its own
+    # Marker scale is in the mesh's axes: x depth, y width, z height.
+    assert m.scale == pytest.approx((0.8, 2.0, 1.25))
+    assert_mesh_covers_the_object(m, obj)
+    # The partial bedroom's second stand has a size of its own as well.
+    stand_1 = object_markers(scene_markers(rich_bedroom(), 'mesh'))[-2]
+    assert stand_1.ns == 'stand' and stand_1.id == 1 and stand_1.scale != (1.0, 1.0, 1.0)
 
 
-def test_mesh_cache_is_thread_safe(tmp_path):
-    obj = rich_bedroom().get('stand_1')
-    cache = MeshCache(tmp_path)
-    uris, errors = [], []
+@pytest.mark.parametrize('model_id', ['custom.1', 'double_bed_00', ''])
+def test_an_unknown_model_id_shows_the_nearest_variant_scaled(model_id):
+    # Unknown to the catalog, or a model of another category: the stand nearest in footprint.
+    size = (0.47, 0.36, 0.58)
+    obj = PlacedObject('stand_0', 'stand', model_id, (1.0, 1.0, 0.0), -0.4, size)
+    [m] = object_markers(scene_markers(Scene(bedroom().room, [obj]), 'mesh'))
+    nearest = catalog.nearest('stand', size[0], size[1])
+    assert m.mesh_resource == PACKAGE_MESHES + f'{nearest.model_id}.obj'
+    assert m.scale == pytest.approx((size[1] / nearest.depth, size[0] / nearest.width,
+                                     size[2] / nearest.height))
+    assert_mesh_covers_the_object(m, obj)
 
-    def work():
-        try:
-            uris.append(cache.uri(obj))
-        except Exception as e:        # pragma: no cover - reported below
-            errors.append(e)
 
-    threads = [threading.Thread(target=work) for _ in range(6)]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
-    assert not errors
-    assert len(uris) == 6 and len(set(uris)) == 1
-    assert sorted(p.suffix for p in tmp_path.iterdir()) == ['.mtl', '.obj']
+def test_a_category_without_catalog_models_stays_a_box_in_mesh_style():
+    obj = PlacedObject('robot_0', 'robot', 'robot_00', (1.0, 1.0, 0.0), 0.3, (0.5, 0.6, 1.2))
+    [m] = object_markers(scene_markers(Scene(bedroom().room, [obj]), 'mesh'))
+    assert m.kind == 'cube' and m.mesh_resource == ''
+    assert m.scale == pytest.approx((0.6, 0.5, 1.2))
+    assert m.position == pytest.approx((1.0, 1.0, 0.6))
 
 
 def test_markers_module_needs_no_ros():

@@ -74,6 +74,14 @@ def test_wheel_installs_the_ament_data_files(wheel):
         assert f'scene_synth_ros/weights/{rt}.pt' in names
     for cfg in ('compact', 'paper', 'scene_synth_node'):
         assert f'{data}share/scene_synth_ros/config/{cfg}.yaml' in names
+    for shared in ('launch/scene_synth.launch.py', 'launch/scene_synth.launch.xml',
+                   'rviz/scene_synth.rviz'):
+        assert f'{data}share/scene_synth_ros/{shared}' in names
+    # The catalog meshes that mesh markers name as package://scene_synth_ros/meshes/<model>.obj
+    from scene_synth_ros import catalog
+    meshes = [n for n in names if n.startswith(f'{data}share/scene_synth_ros/meshes/')]
+    assert len([n for n in meshes if n.endswith('.obj')]) == len(catalog.all_variants())
+    assert len([n for n in meshes if n.endswith('.mtl')]) == len(catalog.all_variants())
     info = next(n for n in names if n.endswith('.dist-info/entry_points.txt'))
     entry_points = zipfile.ZipFile(wheel).read(info).decode()
     assert 'scene_synth_node = scene_synth_ros.node:main' in entry_points  # for `ros2 run`
@@ -117,7 +125,9 @@ def test_the_wheel_works_installed_outside_the_source_tree(wheel, tmp_path):
     directory outside the checkout, as a user of `pip install .` or of a plain `colcon build`
     would. The fresh environment borrows this one's pinned dependencies through a path
     entry, which does not run the editable install's import hook."""
-    in_wheel = {n for n in zipfile.ZipFile(wheel).namelist() if n.endswith('.py')}
+    # (share/ holds a .py too, the launch file: data, not a module)
+    in_wheel = {n for n in zipfile.ZipFile(wheel).namelist()
+                if n.endswith('.py') and '.data/' not in n}
     # Every module of the sources and nothing else (no stale module from an old build).
     assert in_wheel == _source_modules(), sorted(in_wheel ^ _source_modules())
 
@@ -164,7 +174,9 @@ def test_the_wheel_works_installed_outside_the_source_tree(wheel, tmp_path):
     prefix = str(env_dir.resolve())
     assert seen['package'].startswith(prefix) and seen['node'].startswith(prefix)
     assert seen['share'] == str(env_dir.resolve() / 'share' / 'scene_synth_ros')
-    assert {'package.xml', 'msg_schemas', 'config', 'examples'} <= set(seen['files'])
+    assert {'package.xml', 'msg_schemas', 'config', 'examples', 'launch', 'rviz'} \
+        <= set(seen['files'])
+    assert 'meshes' in seen['files']
     assert {'room_layout.schema.json', 'scene.schema.json'} <= set(seen['schemas'])
     assert {'compact.yaml', 'paper.yaml', 'scene_synth_node.yaml'} <= set(seen['configs'])
     assert seen['weights'] == ['bathroom.pt', 'bedroom.pt', 'living.pt', 'office.pt']

@@ -179,9 +179,10 @@ def _mut(fn):
 BAD_LAYOUTS = [
     # (case id, payload, expected path, words the message must contain)
     ('invalid json', '{"room_type": "bedroom", "floor": [[0, 0], [1, 0]', '',
-     ['not valid JSON', 'line 1', 'column']),
-    ('trailing comma', '{"room_type": "bedroom",\n "floor": [],\n}', '',
-     ['not valid JSON', 'line 3']),
+     ['neither JSON', 'nor YAML', 'line 1', 'column 50']),
+    # YAML's flow style allows the trailing comma, so this is read, and its floor refused.
+    ('trailing comma', '{"room_type": "bedroom",\n "floor": [],\n}', 'floor',
+     ['at least 3']),
     ('not an object', '[1, 2, 3]', '', ['must be an object', 'array']),
     ('missing floor', _mut(lambda d: d.pop('floor')), 'floor', ['required']),
     ('missing room type', _mut(lambda d: d.pop('room_type')), 'room_type', ['required']),
@@ -457,3 +458,72 @@ def test_a_room_is_accepted_iff_it_fits_in_its_own_axes(floor, fits, degrees):
                                                         r'its walls, which does not fit the 6 m x '
                                                         r'6 m square a bedroom may cover$'):
             schema.parse_room_layout(layout)
+
+
+# ---- layouts as a person types them: YAML, and Python dicts -------------------------------
+SQUARE_JSON = {'room_type': 'office', 'floor': [[0, 0], [4, 0], [4, 4], [0, 4]],
+               'doors': [{'position': [2, 0], 'width': 0.9, 'height': 2.0}]}
+
+
+@pytest.mark.parametrize('text', [
+    # what `ros2 topic pub ... "data: '{room_type: office, ...}'"` delivers: YAML flow style
+    "{room_type: office, floor: [[0, 0], [4, 0], [4, 4], [0, 4]], "
+    "doors: [{position: [2, 0], width: 0.9, height: 2.0}]}",
+    # block style, as in a file
+    "room_type: office\nfloor:\n  - [0, 0]\n  - [4, 0]\n  - [4, 4]\n  - [0, 4]\n"
+    "doors:\n  - {position: [2, 0], width: 0.9, height: 2}\n",
+    # what an unquoted mapping arrives as: a Python dict's repr
+    str(SQUARE_JSON),
+])
+def test_a_layout_may_be_yaml_or_a_python_dict(text):
+    assert schema.parse_room_layout(text) == schema.parse_room_layout(json.dumps(SQUARE_JSON))
+
+
+@pytest.mark.parametrize('text,words', [
+    ("{'room_type': 'office', 'floor': [(0, 0), (4, 0), (4, 4)]}",
+     ['must be an array, got string', "data: '{\"room_type\""]),
+    ("{'room_type': None, 'floor': [[0, 0], [4, 0], [4, 4]]}",
+     ['not a known room type', 'Python dict', 'single quotes']),
+])
+def test_a_python_dict_that_fails_says_how_to_quote_json(text, words):
+    with pytest.raises(SceneValidationError) as e:
+        schema.parse_room_layout(text)
+    for w in words:
+        assert w in str(e.value)
+
+
+@pytest.mark.parametrize('text,words', [
+    ('a: &x [1, 2]\nb: *x', ['aliases', 'line 2']),                 # expansion bombs
+    ('room_type: office\nfloor: !!binary aGVsbG8=', ['floor is binary data']),
+    ('{1: 2}', ['key that is not text']),
+    ('a: ' + '1' * 5000, ['number too long']),
+    ('[' * 900 + ']' * 900, ['nested']),
+    ('room_type: office\nfloor: [[0, 0]]\n' + '#' * (70 << 10), ['YAML is read only up to']),
+    ('{"room_type": "office", "floor": [[0, 0], [1, 0]', ['neither JSON', 'nor YAML',
+                                                          'column 49']),
+])
+def test_yaml_is_read_within_bounds_and_refused_in_one_sentence(text, words):
+    with pytest.raises(SceneValidationError) as e:
+        schema.parse_room_layout(text)
+    message = str(e.value)
+    assert '\n' not in message and len(message) <= 400
+    for w in words:
+        assert w in message, message
+
+
+def test_dates_stay_text_and_scenes_stay_json():
+    # YAML would read 2026-11-25 as a date, which JSON has not: it stays the text.
+    layout = dict(SQUARE_JSON, room_type='2026-11-25')
+    with pytest.raises(SceneValidationError, match="'2026-11-25' is not a known room type"):
+        schema.parse_room_layout(json.dumps(layout).replace('"2026-11-25"', '2026-11-25'))
+    with pytest.raises(SceneValidationError, match='not valid JSON'):    # our own output
+        schema.parse_scene('room: {}')
+
+
+def test_a_request_id_is_kept_in_meta_and_checked():
+    scene = schema.parse_room_layout(dict(SQUARE_JSON, request_id='job-7/a'))
+    assert scene.meta == {'request_id': 'job-7/a'}
+    assert schema.parse_room_layout(SQUARE_JSON).meta == {}
+    for bad in ('', 'with space', 'x' * 129, 7):
+        with pytest.raises(SceneValidationError, match='request_id'):
+            schema.parse_room_layout(dict(SQUARE_JSON, request_id=bad))

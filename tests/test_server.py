@@ -22,6 +22,7 @@ class Recorder:
         self.served = []
         self.statuses = []
         self.logs = []
+        self.seeds = []             # what on_seed announced
         self.cond = threading.Condition()
 
     def publish(self, served):
@@ -35,6 +36,9 @@ class Recorder:
     def log(self, level, text):
         self.logs.append((level, text))
 
+    def seed(self, seed):
+        self.seeds.append(seed)
+
     def wait(self, n, timeout=60.0):
         with self.cond:
             assert self.cond.wait_for(lambda: len(self.served) >= n, timeout), \
@@ -45,7 +49,8 @@ class Recorder:
 @pytest.fixture
 def server():
     rec = Recorder()
-    srv = SceneServer(ServerConfig(torch_threads=1), rec.publish, rec.status, rec.log)
+    srv = SceneServer(ServerConfig(torch_threads=1), rec.publish, rec.status, rec.log,
+                      rec.seed)
     srv.rec = rec
     yield srv
     srv.close()
@@ -54,7 +59,7 @@ def server():
 def test_layout_is_furnished_and_published_as_valid_json(server):
     assert server.submit_layout(LAYOUT)
     served = server.rec.wait(1)
-    assert served.source == 'layout' and served.seed == 0
+    assert served.source == 'room_layout' and served.seed == 0
     scene = parse_scene(served.json)
     assert scene.room.room_type == 'bedroom' and len(scene) == len(served.added) > 0
     assert scene.meta['seed'] == 0
@@ -140,7 +145,7 @@ def test_a_new_layout_supersedes_queued_and_running_ones(server):
     last = parse_scene(json.dumps({'room': layouts[-1]})).room
     served = server.rec.wait(1)
     server.request('reset')           # queued after the layouts: once done, all were handled
-    rooms = [s.scene.room for s in server.rec.served if s.source == 'layout']
+    rooms = [s.scene.room for s in server.rec.served if s.source == 'room_layout']
     assert rooms[-1] == last
     assert len(rooms) < 5 and server.status.requests_superseded >= 5 - len(rooms)
     assert served.scene.room in [parse_scene(json.dumps({'room': d})).room for d in layouts]
@@ -295,3 +300,48 @@ def test_a_failing_logger_does_not_stop_the_worker():
         assert srv.status.inputs_rejected == 1
     finally:
         srv.close()
+
+
+def test_requests_with_arguments_come_from_parameters(server):
+    seeds = server.rec.seeds
+    layout = json.loads(LAYOUT)
+    layout['request_id'] = 'mine-1'
+    assert server.submit_layout(json.dumps(layout))
+    first = server.rec.wait(1)
+    assert first.scene.meta['request_id'] == 'mine-1'        # the answer to that layout
+    assert seeds == [1] and server.next_seed == 1
+
+    # next_category: every ~/next_object inserts that category, until it is cleared.
+    server.reconfigure({'next_category': 'Floor_Lamp'})        # as typed: floor lamp
+    for k in (2, 3):
+        ok, message = server.request('next_object')
+        assert ok, message
+        assert json.loads(message)['category'] == 'floor lamp'
+        later = server.rec.wait(k)
+        assert 'request_id' not in later.scene.meta               # a later room: not its answer
+    server.reconfigure({'next_category': 'toilet'})             # a category, not a bedroom's
+    ok, message = server.request('next_object')
+    assert not ok and "'toilet' is not a category of bedroom rooms" in message
+    with pytest.raises(ConfigError, match='not a category'):
+        server.reconfigure({'next_category': 'spaceship'})
+
+    # suggest: k proposals, the room unchanged, a seed taken.
+    server.reconfigure({'next_category': '', 'suggestions': 3})
+    before = server.scene
+    ok, message = server.request('suggest')
+    answer = json.loads(message)
+    assert ok and len(answer['objects']) == 3
+    assert server.scene.to_dict() == before.to_dict()
+    assert len(server.rec.served) == 3                         # nothing published
+    # The seed of a request is the one the parameter showed before it.
+    server.reconfigure({'seed': 40})
+    ok, message = server.request('generate')
+    assert ok and json.loads(message)['seed'] == 40 and seeds[-1] == 41
+
+
+def test_status_and_sources_name_the_topic_and_read_as_english(server):
+    office = json.dumps({'room_type': 'office', 'floor': [[0, 0], [4, 0], [4, 3.5], [0, 3.5]]})
+    assert server.submit_layout(office, 'room_polygon')
+    served = server.rec.wait(1)
+    assert served.source == 'room_polygon'
+    assert server.status.message.endswith('objects in an office')

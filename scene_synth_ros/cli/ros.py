@@ -31,11 +31,20 @@ def add_parser(sub) -> None:
     c.add_argument('--png', help='write a top-down picture here')
     c.set_defaults(func=cmd_publish_layout)
 
-    for kind, text in (('next-object', 'insert one object into the current room'),
-                       ('generate', 'furnish the current room again with a new seed'),
-                       ('reset', 'remove all objects from the current room')):
-        c = rsub.add_parser(kind, help=text)
-        c.set_defaults(func=cmd_service, service=kind.replace('-', '_'))
+    c = rsub.add_parser('next-object', help='insert one object into the current room')
+    c.add_argument('--category', help='of this category (sets the parameter next_category; '
+                   'without it the category module chooses)')
+    c.set_defaults(func=cmd_service, service='next_object')
+    c = rsub.add_parser('generate', help='furnish the current room again from empty')
+    c.add_argument('--seed', type=int, help='with this seed (sets the parameter seed; '
+                   'default: the node\'s next one)')
+    c.set_defaults(func=cmd_service, service='generate')
+    c = rsub.add_parser('suggest', help='print proposals for the next object; the room does '
+                        'not change')
+    c.add_argument('-k', type=int, help='how many (sets the parameter suggestions)')
+    c.set_defaults(func=cmd_service, service='suggest')
+    c = rsub.add_parser('reset', help='remove all objects from the current room')
+    c.set_defaults(func=cmd_service, service='reset')
 
     c = rsub.add_parser('echo', help='print the latest message of a topic')
     c.add_argument('topic', choices=('scene', 'markers', 'poses', 'diagnostics'))
@@ -90,11 +99,20 @@ def cmd_publish_layout(args) -> int:
 
 
 def cmd_service(args) -> int:
+    from ..ros_client import ClientError
     with _client(args) as client:
-        ok, message = client.call(args.service, args.timeout)
-    if not ok:
-        raise UserError(f'{args.service} refused: {message}')
-    print(message)
+        try:
+            if args.service == 'next_object':
+                answer = client.next_object(args.category, args.timeout)
+            elif args.service == 'generate':
+                answer = client.generate(args.seed, args.timeout)
+            elif args.service == 'suggest':
+                answer = {'objects': client.suggest(args.k, args.timeout)}
+            else:
+                answer = client.reset(args.timeout)
+        except ClientError as e:
+            raise UserError(str(e)) from None
+    print(json.dumps(answer))
     return 0
 
 

@@ -10,21 +10,40 @@ the package's (REP-103): metres, z up.
 The modules: ``materials`` (the palette), ``builder`` (primitives, ``Part``, ``Builder``, the
 ``builds`` declaration), ``furniture`` (one module of builders per family of categories),
 ``registry`` (category -> builder, ``build_parts``, ``build_mesh``), ``export`` (GLB and
-OBJ files), ``assembly`` (whole scenes) and ``preview`` (pictures for people). This package
-re-exports the public API so callers need not know the layout.
+OBJ files), ``shipped`` (the OBJ files installed with the package, which RViz markers refer
+to as ``package://`` URIs), ``assembly`` (whole scenes) and ``preview`` (pictures for
+people). This package re-exports the public API so callers need not know the layout.
 """
 from __future__ import annotations
 
 from .assembly import object_transform, scene_mesh, variant_for
 from .builder import Builder, Part, builds
-from .export import export_catalog, export_model, material_meshes, mesh_path, model_scene
+from .export import (
+    export_catalog,
+    export_model,
+    material_meshes,
+    mesh_path,
+    model_scene,
+    mtl_text,
+    obj_text,
+)
 from .materials import BOOK_COVERS, MATERIALS, Material
 from .preview import render_image, render_preview, save_contact_sheet
 from .registry import BUILDERS, build_mesh, build_parts, builder_for
+from .shipped import (
+    mesh_scale,
+    package_uri,
+    shipped_files,
+    shipped_name,
+    shipped_variant,
+    write_shipped_meshes,
+)
 
 __all__ = [
     'BOOK_COVERS', 'BUILDERS', 'MATERIALS', 'Builder', 'Material', 'Part', 'build_mesh',
     'build_parts', 'builder_for', 'builds', 'export_catalog', 'export_model',
-    'material_meshes', 'mesh_path', 'model_scene', 'object_transform', 'render_image',
-    'render_preview', 'save_contact_sheet', 'scene_mesh', 'variant_for',
+    'material_meshes', 'mesh_path', 'mesh_scale', 'model_scene', 'mtl_text', 'obj_text',
+    'object_transform', 'package_uri', 'render_image', 'render_preview', 'save_contact_sheet',
+    'scene_mesh', 'shipped_files', 'shipped_name', 'shipped_variant', 'variant_for',
+    'write_shipped_meshes',
 ]

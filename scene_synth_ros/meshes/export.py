@@ -69,27 +69,40 @@ def model_scene(variant: ModelVariant) -> trimesh.Scene:
 def _write_obj(variant: ModelVariant, path: Path) -> None:
     """Wavefront OBJ with an MTL file next to it (``<stem>.mtl``), one group per material."""
     mtl_path = path.with_suffix('.mtl')
+    text, used = obj_text(variant, mtl_path.name)
+    path.write_text(text)
+    mtl_path.write_text(mtl_text(used))
+
+
+def obj_text(variant: ModelVariant, mtllib: str) -> tuple[str, list[str]]:
+    """``variant``'s mesh as Wavefront OBJ text naming the material library ``mtllib``, one
+    group per material, and the names of the materials it uses, in order of first use."""
     lines = [f'# {variant.model_id} ({variant.category}), metres, z up, front +x',
-             f'mtllib {mtl_path.name}']
-    mtl = []
+             f'mtllib {mtllib}']
     groups: dict[str, list[Part]] = {}
     for p in build_parts(variant):
         groups.setdefault(p.material, []).append(p)
     offset = 1
     for mat_name, parts in groups.items():
-        mat = MATERIALS[mat_name]
-        r, g, bl, a = (c / 255.0 for c in mat.rgba)
-        mtl += [f'newmtl {mat_name}', f'Kd {r:.4f} {g:.4f} {bl:.4f}', 'Ka 0 0 0',
-                f'Ks {0.5 * mat.metallic + 0.04:.3f} {0.5 * mat.metallic + 0.04:.3f} '
-                f'{0.5 * mat.metallic + 0.04:.3f}',
-                f'Ns {max(1.0, (1.0 - mat.roughness) * 200):.1f}', f'd {a:.3f}', 'illum 2', '']
         lines += [f'o {mat_name}', f'usemtl {mat_name}']
         for p in parts:
             lines += [f'v {x:.6f} {y:.6f} {z:.6f}' for x, y, z in p.vertices]
             lines += [f'f {i + offset} {j + offset} {k + offset}' for i, j, k in p.faces]
             offset += len(p.vertices)
-    path.write_text('\n'.join(lines) + '\n')
-    mtl_path.write_text('\n'.join(mtl))
+    return '\n'.join(lines) + '\n', list(groups)
+
+
+def mtl_text(material_names: Iterable[str]) -> str:
+    """The MTL entries of the named materials (see ``MATERIALS``), in the order given."""
+    mtl = []
+    for mat_name in material_names:
+        mat = MATERIALS[mat_name]
+        r, g, bl, a = (c / 255.0 for c in mat.rgba)
+        ks = f'{0.5 * mat.metallic + 0.04:.3f}'
+        mtl += [f'newmtl {mat_name}', f'Kd {r:.4f} {g:.4f} {bl:.4f}', 'Ka 0 0 0',
+                f'Ks {ks} {ks} {ks}', f'Ns {max(1.0, (1.0 - mat.roughness) * 200):.1f}',
+                f'd {a:.3f}', 'illum 2', '']
+    return '\n'.join(mtl)
 
 
 def export_model(variant: ModelVariant, path: str | Path) -> Path:

@@ -1,0 +1,82 @@
+"""Start scene_synth_node, and RViz with the shipped view when asked.
+
+    ros2 launch scene_synth_ros scene_synth.launch.py
+    ros2 launch scene_synth_ros scene_synth.launch.py room_type:=office rviz:=true
+    ros2 launch scene_synth_ros scene_synth.launch.py namespace:=sim use_sim_time:=true
+    ros2 launch scene_synth_ros scene_synth.launch.py --show-args
+
+The parameters file is loaded first; room_type, marker_style and use_sim_time are set
+after it, so these three arguments always win over the file.
+"""
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch.conditions import IfCondition
+from launch.substitutions import LaunchConfiguration, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.parameter_descriptions import ParameterValue
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    share = FindPackageShare('scene_synth_ros')
+    namespace = LaunchConfiguration('namespace')
+    use_sim_time = LaunchConfiguration('use_sim_time')
+
+    arguments = [
+        DeclareLaunchArgument(
+            'room_type', default_value='bedroom',
+            description='room type of layouts arriving on ~/room_polygon: bedroom, living, '
+                        'office or bathroom (overrides params_file)'),
+        DeclareLaunchArgument(
+            'params_file',
+            default_value=PathJoinSubstitution([share, 'config', 'scene_synth_node.yaml']),
+            description='YAML file of node parameters, loaded before the other arguments'),
+        DeclareLaunchArgument(
+            'use_sim_time', default_value='false',
+            description='follow the simulation clock on /clock (true) or the wall clock (false)'),
+        DeclareLaunchArgument(
+            'namespace', default_value='',
+            description="namespace of the node (and of RViz); '' = the root namespace"),
+        DeclareLaunchArgument(
+            'marker_style', default_value='cube', choices=['cube', 'mesh'],
+            description='objects drawn as boxes (cube) or catalog meshes (mesh) '
+                        '(overrides params_file)'),
+        DeclareLaunchArgument(
+            'rviz', default_value='false',
+            description='also start RViz with the shipped rviz/scene_synth.rviz'),
+    ]
+
+    scene_synth = Node(
+        package='scene_synth_ros',
+        executable='scene_synth_node',
+        name='scene_synth_node',
+        namespace=namespace,
+        output='screen',
+        parameters=[
+            LaunchConfiguration('params_file'),
+            {
+                # Strings stay strings whatever they look like to a YAML parser.
+                'room_type': ParameterValue(LaunchConfiguration('room_type'), value_type=str),
+                'marker_style': ParameterValue(LaunchConfiguration('marker_style'),
+                                               value_type=str),
+                'use_sim_time': use_sim_time,
+            },
+        ],
+    )
+
+    # The .rviz file names the node's topics absolutely; remapping them to relative names
+    # makes RViz, started in the same namespace, follow the node into it (and changes
+    # nothing in the root namespace). No name= here: it would rename every node RViz runs.
+    rviz = Node(
+        package='rviz2',
+        executable='rviz2',
+        namespace=namespace,
+        output='screen',
+        arguments=['-d', PathJoinSubstitution([share, 'rviz', 'scene_synth.rviz'])],
+        parameters=[{'use_sim_time': use_sim_time}],
+        remappings=[('/scene_synth_node/markers', 'scene_synth_node/markers'),
+                    ('/scene_synth_node/poses', 'scene_synth_node/poses')],
+        condition=IfCondition(LaunchConfiguration('rviz')),
+    )
+
+    return LaunchDescription([*arguments, scene_synth, rviz])
