@@ -370,6 +370,80 @@ def test_a_layout_typed_as_yaml_or_pasted_as_a_python_dict(node):
     assert 'single quotes' in diag['last error']
 
 
+def _readme_ros2_commands() -> list[list[str]]:
+    """The argv of every ros2 command in the README's "From the ros2 command line" block, as
+    bash expands it (from the repository root, where its paths point)."""
+    root = Path(__file__).resolve().parent.parent
+    text = (root / 'README.md').read_text()
+    block = text.split('### From the ros2 command line', 1)[1].split('```bash', 1)[1]
+    lines = [line for line in block.split('```', 1)[0].splitlines()
+             if line.startswith('ros2 ')]
+    out = []
+    for line in lines:
+        r = subprocess.run(['bash', '-c', 'ros2() { printf "%s\\0" "$@"; }; ' + line],
+                           cwd=root, capture_output=True, text=True, timeout=30, check=True)
+        out.append(r.stdout.split('\0')[:-1])
+    return out
+
+
+def _as_ros2_would(client, argv: list[str]) -> str:
+    """Do what the ros2 verb does with these arguments (ros2cli is not installable here):
+    the message or parameter value is read as YAML, and a string field given a mapping gets
+    its Python repr (rosidl_runtime_py.set_message_fields)."""
+    from geometry_msgs.msg import Point32, PolygonStamped
+    from std_msgs.msg import String
+
+    from scene_synth_ros.ros_client import RELIABLE
+    if argv[:2] == ['topic', 'pub']:
+        topic, kind, values = argv[-3], argv[-2], yaml.safe_load(argv[-1])
+        if kind == 'std_msgs/msg/String':
+            data = values['data']
+            msg = String(data=data if isinstance(data, str) else str(data))
+        else:
+            assert kind == 'geometry_msgs/msg/PolygonStamped'
+            msg = PolygonStamped()
+            msg.header.frame_id = values['header']['frame_id']
+            msg.polygon.points = [Point32(**p) for p in values['polygon']['points']]
+        pub = client.node.create_publisher(type(msg), topic, RELIABLE)
+        client.spin_until(lambda: pub.get_subscription_count() > 0, 10.0, 'subscriber')
+        n = client.count('scene')
+        pub.publish(msg)
+        client.spin_until(lambda: client.count('scene') > n, 60.0, 'room')
+        return f'publishing #1: {type(msg).__name__}'
+    if argv[:2] == ['topic', 'echo']:
+        assert argv[-1] == client.target + '/scene' and '--field' in argv
+        return client.latest('scene').data
+    if argv[:2] == ['service', 'call']:
+        assert argv[-1] == 'std_srvs/srv/Trigger'
+        ok, message = client.call(argv[2].rsplit('/', 1)[1])
+        return f'success={ok} message={message!r}'
+    if argv[:2] == ['param', 'set']:
+        refused = client.set_parameters({argv[3]: yaml.safe_load(argv[4])})
+        return 'Set parameter successful' if not refused else refused[0]
+    assert argv[:2] == ['param', 'get']
+    return f'{client.get_parameters([argv[3]])[argv[3]]}'
+
+
+def test_the_readme_ros2_commands_work(node):
+    client = node.client
+    answers = []
+    for argv in _readme_ros2_commands():
+        assert any(a.startswith(client.target + '/') or a == client.target for a in argv)
+        answers.append(_as_ros2_would(client, argv))
+        print('$ ros2', ' '.join(argv)[:150], '\n', answers[-1][:300])
+    services = [a for a in answers if a.startswith('success=')]
+    assert len(answers) == 13 and all(a.startswith('success=True') for a in services)
+    assert [a for a in answers if a.startswith('Set parameter')] == ['Set parameter successful'] * 4
+    scene = parse_scene(answers[3])                      # the echo: raw JSON of the polygon's room
+    assert scene.room.room_type == 'bedroom' and scene.room.area == pytest.approx(20.0)
+    chair = json.loads(services[1].split('message=', 1)[1][1:-1])
+    assert chair['category'] == 'office chair'
+    assert len(json.loads(services[2].split('message=', 1)[1][1:-1])['objects']) == 3
+    assert json.loads(services[3].split('message=', 1)[1][1:-1])['seed'] == 42
+    assert answers[-1] == '43'
+    assert client.set_parameters({'suggestions': 5}) == []
+
+
 def test_help_prints_the_usage_and_a_stray_argument_is_named():
     r = subprocess.run([sys.executable, '-m', 'scene_synth_ros.node', '--help'],
                        capture_output=True, text=True, timeout=60)
