@@ -35,6 +35,7 @@ from std_msgs.msg import ColorRGBA, String
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker, MarkerArray
 
+from .allocator import steady_allocator
 from .errors import SceneSynthError, sentence
 from .markers import scene_markers
 from .ros_client import LATCHED, RELIABLE
@@ -282,6 +283,7 @@ def main(args: list[str] | None = None) -> int:
     handled = _command_line(args)
     if handled is not None:
         return handled
+    steady_allocator()      # before the threads and the first messages
     # SIGINT and SIGTERM only raise a flag that the spin loop checks: letting rclpy's own
     # handlers shut the context down under a multi-threaded executor races with its wait set.
     stop = threading.Event()
