@@ -22,6 +22,7 @@ from scene_synth_ros.networks.location import location_distribution, sample_pixe
 from scene_synth_ros.networks.orientation import decode_angle, is_snapped, snap_angle
 from scene_synth_ros.paths import config_dir
 from scene_synth_ros.render import COS, SIN, Frame, TopDownRenderer
+from scene_synth_ros.scene import Scene
 
 
 @pytest.fixture(scope='module')
@@ -105,6 +106,24 @@ def test_placeable_needs_the_parent(rooms):
     assert child not in placeable([child], others)
     assert child in placeable([child], others + [parent])
     assert parent in placeable([parent], [])
+
+
+def test_category_examples_are_drawn_uniformly_over_the_states_synthesis_visits(rooms):
+    # A room of N objects is N + 1 states; STOP is the target of one of them. Drawn per
+    # state, STOP is the target in (rooms / states) of the examples; drawn per room first,
+    # it would be the mean of 1 / (N + 1), which is larger.
+    large = max(rooms, key=len)
+    small = Scene(large.room, list(large.first_tier[:1]))
+    src = ExampleSource('bedroom', [small, large], 64, 64, augment=False)
+    stop = src.num_categories
+    rng = np.random.default_rng(0)
+    n = 4000
+    share = sum(src.category_example(rng)[2] == stop for _ in range(n)) / n
+    per_state = 2 / (len(small) + len(large) + 2)
+    per_room = (1 / (len(small) + 1) + 1 / (len(large) + 1)) / 2
+    noise = math.sqrt(per_state * (1 - per_state) / n)
+    assert per_room - per_state > 8 * noise          # the two are told apart
+    assert abs(share - per_state) < 4 * noise
 
 
 def test_location_target_marks_placeable_centroids(rooms):
@@ -334,6 +353,25 @@ def test_training_resumes_exactly(tmp_path):
     for module in ('category', 'dimensions'):
         a, b = results[('straight', module)], results[('resumed', module)]
         assert all(torch.allclose(a[k].float(), b[k].float(), atol=1e-6) for k in a), module
+
+
+def test_one_module_retrained_keeps_the_others_of_a_bundle(tiny_weights, tmp_path):
+    from scene_synth_ros.networks.train import train
+    cfg = tiny_config(steps=2)
+    cfg.train.seed = 7                 # another category network than the bundle's
+    train(['bathroom'], cfg, tmp_path / 'run', tmp_path / 'out', progress=False,
+          echo=lambda s: None, modules=('category',), others_from=tiny_weights)
+    base = load_bundle(tiny_weights / 'bathroom.pt')
+    new = load_bundle(tmp_path / 'out' / 'bathroom.pt')
+    for name, net in new.networks.items():
+        same = all(torch.equal(v, base.networks[name].state_dict()[k])
+                   for k, v in net.state_dict().items())
+        assert same == (name != 'category'), name
+    other = tiny_config(steps=2)
+    other.model.hidden = 16
+    with pytest.raises(ValueError, match='another model configuration'):
+        train(['bathroom'], other, tmp_path / 'run2', tmp_path / 'out2', progress=False,
+              echo=lambda s: None, modules=('category',), others_from=tiny_weights)
 
 
 def test_bundle_round_trip_and_errors(tiny_weights, tmp_path):

@@ -207,7 +207,7 @@ def _box(x, y, yaw=0.0, size=(0.6, 0.4, 0.8)):
     return PlacedObject('stand_0', 'stand', 'stand_00', (x, y, 0.0), yaw, size)
 
 
-def test_against_walls_closes_sub_pixel_gaps_only():
+def test_against_walls_closes_sub_pixel_gaps_either_side_only():
     import numpy as np
 
     from scene_synth_ros.synth import WALL_GAP, against_walls
@@ -223,6 +223,13 @@ def test_against_walls_closes_sub_pixel_gaps_only():
     corner = against_walls(room, _box(0.25, 0.35), 0.15, rng)
     xs, ys = corner.corners()[:, 0], corner.corners()[:, 1]
     assert xs.min() <= WALL_GAP[1] + 1e-9 and ys.min() <= WALL_GAP[1] + 1e-9
+    # 6 cm through the bottom wall: pulled back onto it, inside the room
+    through = against_walls(room, _box(2.0, 0.14, math.pi / 2), 0.15, rng)
+    assert room.polygon.covers(through.footprint())
+    assert WALL_GAP[0] <= ring.distance(through.footprint()) <= WALL_GAP[1]
+    # 20 cm through it, past reach: left for the insertion to refuse
+    deep = _box(2.0, 0.0, math.pi / 2)
+    assert against_walls(room, deep, 0.15, rng) is deep
     # beyond reach, already against the wall, or not parallel to any wall: unchanged
     far = _box(2.0, 0.50, math.pi / 2)
     flush = _box(2.0, 0.21, math.pi / 2)

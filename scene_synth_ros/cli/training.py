@@ -21,6 +21,9 @@ def add_parser(sub) -> None:
     c.add_argument('--modules', help='comma-separated subset of category, location, '
                    'orientation, snap, dimensions to train (no export); several processes '
                    'may train different modules of one room type at once')
+    c.add_argument('--others-from', help='with --modules: take the other modules from the '
+                   'bundles in this directory (same model configuration, e.g. the shipped '
+                   'weights) and export')
     c.add_argument('--quiet', action='store_true', help='no progress bars')
     c.set_defaults(func=cmd_train)
 
@@ -67,9 +70,12 @@ def cmd_train(args) -> int:
     print(f'training {", ".join(room_types(args.room_type))} with the {cfg.name} '
           f'configuration; checkpoints and logs in {run_root}, weights to {out}')
     modules = tuple(m.strip() for m in args.modules.split(',')) if args.modules else None
+    if args.others_from and not modules:
+        raise UserError('--others-from needs --modules: the modules to train')
     try:
         train(room_types(args.room_type), cfg, run_root, out, progress=not args.quiet,
-              **({'modules': modules} if modules else {}))
+              **({'modules': modules} if modules else {}),
+              others_from=Path(args.others_from) if args.others_from else None)
     except ValueError as e:     # bad arguments, refused with plain ValueErrors
         raise UserError(str(e)) from None
     return 0

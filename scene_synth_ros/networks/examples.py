@@ -100,6 +100,10 @@ class ExampleSource:
         self.augment = augment
         self.target_radius = target_radius
         self.renderer = TopDownRenderer(resolution, cache_size=64)
+        # A room of N objects is N + 1 states of the sequential model (0 ... N objects
+        # placed); drawing rooms in proportion to that draws states as synthesis meets them.
+        states = np.array([len(s.objects) + 1 for s in self.scenes], dtype=float)
+        self._state_cdf = np.cumsum(states) / states.sum()
 
     @property
     def extent(self) -> float:
@@ -110,8 +114,15 @@ class ExampleSource:
     def num_categories(self) -> int:
         return len(self.spec.names)
 
-    def _scene(self, rng) -> Scene:
-        scene = self.scenes[rng.integers(len(self.scenes))]
+    def _scene(self, rng, per_state: bool = False) -> Scene:
+        """A training room, uniformly, or with ``per_state`` in proportion to its number of
+        states (objects + 1)."""
+        if per_state:
+            k = min(int(np.searchsorted(self._state_cdf, rng.random(), side='right')),
+                    len(self.scenes) - 1)
+        else:
+            k = int(rng.integers(len(self.scenes)))
+        scene = self.scenes[k]
         return rotate_scene(scene, int(rng.integers(4))) if self.augment else scene
 
     def counts(self, objects) -> np.ndarray:
@@ -122,7 +133,11 @@ class ExampleSource:
 
     # One example of each kind. Each returns a tuple of numpy arrays / numbers.
     def category_example(self, rng):
-        scene = self._scene(rng)
+        # Uniform over (room, prefix) pairs, the states synthesis visits: drawing the room
+        # uniformly and then the prefix would weigh a prefix of an N-object room 1 / (N + 1),
+        # overweighting complete small rooms and so teaching STOP too early
+        # (benchmarks/shortfall.py).
+        scene = self._scene(rng, per_state=True)
         order = insertion_order(scene, rng, by_importance=True)
         k = int(rng.integers(len(order) + 1))
         part = Scene(scene.room, order[:k])

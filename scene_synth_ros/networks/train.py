@@ -23,8 +23,8 @@ from ..corpus.generate import generate_corpus
 from ..files import writing_together
 from ..scene import Scene
 from . import COMPONENT_ROWS, NETWORKS
-from .bundle import Bundle, build_networks, save_bundle
-from .config import ModuleSchedule, PipelineConfig, resolve_device
+from .bundle import Bundle, build_networks, bundle_path, load_bundle, save_bundle
+from .config import ModelConfig, ModuleSchedule, PipelineConfig, resolve_device
 from .dimensions import Discriminator, box_sdf, dimensions_elbo
 from .examples import ExampleSource
 from .location import location_loss, offset_loss
@@ -246,11 +246,15 @@ def component_table(nets: dict[str, nn.Module], val: ExampleSource, cfg: Pipelin
 
 def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights_dir: Path,
                     progress: bool = True, echo: Callable[[str], None] = print,
-                    modules: tuple[str, ...] = NETWORKS) -> Bundle | None:
+                    modules: tuple[str, ...] = NETWORKS,
+                    others_from: Path | None = None) -> Bundle | None:
     """Train (or resume) the modules of ``room_type`` and export the bundle. With a subset
     of ``modules`` only those are trained and nothing is exported: several processes can
     then train different modules of one room type at once in the same run directory, and a
-    final run over all modules (each resuming at its end) exports the bundle."""
+    final run over all modules (each resuming at its end) exports the bundle. With
+    ``others_from``, a directory of bundles made with the same model configuration, the
+    modules not trained are taken from its bundle and the result is exported: one module
+    retrained, the others kept."""
     rt = resolve_room_type(room_type)
     device = resolve_device(cfg.device)
     t = cfg.train
@@ -274,6 +278,9 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
     val = ExampleSource(rt, corpus.val, m.resolution, m.location_resolution,
                         target_radius=t.location_target_radius)
     nets = build_networks(rt, m, seed=t.seed)
+    if others_from is not None:
+        _take_networks(nets, bundle_path(others_from, rt), m,
+                       [n for n in NETWORKS if n not in modules])
     final: dict[str, dict[str, float]] = {}
     for name in NETWORKS:
         if name not in modules:
@@ -281,7 +288,7 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
         final[name] = train_module(name, nets[name], source, val, cfg, device, run_dir, log,
                                    progress)
         echo(f'{rt}/{name}: ' + ', '.join(f'{k} {v:.4f}' for k, v in final[name].items()))
-    if set(modules) != set(NETWORKS):
+    if set(modules) != set(NETWORKS) and others_from is None:
         log_file.close()
         echo(f'{rt}: trained {", ".join(modules)}; run again over all modules to export')
         return None
@@ -297,6 +304,17 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
     echo(format_components({rt: table}))
     echo(f'{rt}: weights written to {out}')
     return bundle
+
+
+def _take_networks(nets: dict[str, nn.Module], path: Path, model: ModelConfig,
+                   names: list[str]) -> None:
+    """Replace ``names`` in ``nets`` by the trained networks of the bundle at ``path``."""
+    base = load_bundle(path)
+    if base.config.model != model:
+        raise ValueError(f'{path}: its networks were made with another model configuration '
+                         f'({base.config.name}); train all modules instead')
+    for name in names:
+        nets[name].load_state_dict(base.networks[name].state_dict())
 
 
 def format_components(tables: dict[str, dict[str, dict[str, float]]],
@@ -322,7 +340,8 @@ def format_components(tables: dict[str, dict[str, dict[str, float]]],
 
 def train(room_types: list[str], cfg: PipelineConfig, run_root: Path, weights_dir: Path,
           progress: bool = True, echo: Callable[[str], None] = print,
-          modules: tuple[str, ...] = NETWORKS) -> dict[str, Bundle | None]:
+          modules: tuple[str, ...] = NETWORKS,
+          others_from: Path | None = None) -> dict[str, Bundle | None]:
     unknown = sorted(set(modules) - set(NETWORKS))
     if unknown:
         raise ValueError(f'unknown module {unknown[0]!r}; expected some of {", ".join(NETWORKS)}')
@@ -330,5 +349,6 @@ def train(room_types: list[str], cfg: PipelineConfig, run_root: Path, weights_di
     for rt in room_types:
         if rt not in ROOM_TYPES:
             raise ValueError(f'unknown room type {rt!r}')
-        out[rt] = train_room_type(rt, cfg, run_root, weights_dir, progress, echo, modules)
+        out[rt] = train_room_type(rt, cfg, run_root, weights_dir, progress, echo, modules,
+                                  others_from)
     return out
