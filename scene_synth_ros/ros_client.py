@@ -171,21 +171,23 @@ class SceneSynthClient:
         scene the node answers with.
 
         With ``check`` the layout is validated here first, so bad input fails at once with
-        the same sentence the node would log. A valid layout without a ``request_id`` is
-        sent as JSON with a new one; the answer is the scene that carries it."""
+        the same sentence the node would log. With ``wait``, a valid layout without a
+        ``request_id`` is sent as JSON with a new one, and the answer is the scene that
+        carries it; without, the text is sent as given."""
         from .schema import SceneValidationError, parse_room_layout, read_payload
         text = layout if isinstance(layout, str) else json.dumps(layout)
         request_id = None
-        try:
-            parse_room_layout(text)
-            d = read_payload(text)
-            request_id = d.get('request_id')
-            if request_id is None:
-                request_id = d['request_id'] = uuid.uuid4().hex
-                text = json.dumps(d)
-        except SceneValidationError as e:
-            if check:
-                raise ClientError(f'the layout is invalid: {e}') from None
+        if check or wait:
+            try:
+                parse_room_layout(text)
+                d = read_payload(text)
+                request_id = d.get('request_id')
+                if request_id is None and wait:
+                    request_id = d['request_id'] = uuid.uuid4().hex
+                    text = json.dumps(d)
+            except SceneValidationError as e:
+                if check:
+                    raise ClientError(f'the layout is invalid: {e}') from None
         self.spin_until(lambda: self._layout_pub.get_subscription_count() > 0, timeout,
                         'subscription to room_layout')
         before = self.count('scene')
