@@ -4,7 +4,7 @@ By default glibc raises its mmap threshold to the size of the largest block free
 32 MiB), so once one multi-megabyte message has been freed the next ones come from the heap,
 which fragments and does not shrink, and every thread that meets contention gets a heap of
 its own. Over 1,000 mixed inputs (``benchmarks/node_load.py --clients 0 --fuzz 0 --mixed
-1000``) the node grew by 40.3 MB so, and by 20.7 MB with the settings below: a fixed 1 MiB
+1000``) the node grew by 40.3 MB so, and by 21.4 MB with the settings below: a fixed 1 MiB
 threshold keeps every block that large in a mapping of its own, returned to the system when
 freed, while the arrays of a synthesis (under 1 MiB) stay on the heap; two arenas bound the
 heaps of the executor's threads. Settings given in the environment (``MALLOC_*_``) win.
