@@ -12,11 +12,10 @@ from typing import Sequence
 import numpy as np
 import trimesh
 
-from .. import catalog
 from ..catalog import ModelVariant
-from ..categories import CATEGORIES
 from .builder import rot_z
 from .export import material_meshes
+from .shipped import shipped_variant
 
 
 def object_transform(position: Sequence[float], yaw: float) -> np.ndarray:
@@ -32,20 +31,14 @@ def variant_for(obj) -> ModelVariant:
     the object's size differs from the catalog's (style kept); for an unknown model id, the
     style of the category's nearest variant."""
     size = tuple(float(v) for v in obj.size)
-    try:
-        v = catalog.get(obj.model_id)
-    except KeyError:
-        v = None
-    if v is not None and v.category == obj.category:
+    v = shipped_variant(obj)
+    if v is not None and v.model_id == obj.model_id:
         if np.allclose(v.size, size, atol=1e-6):
             return v
         return ModelVariant(f'{v.model_id}@{size[0]:.3f}x{size[1]:.3f}x{size[2]:.3f}',
                             v.category, size, v.style)
-    style = 0
-    if obj.category in CATEGORIES:
-        style = catalog.nearest(obj.category, size[0], size[1]).style
     return ModelVariant(f'{obj.model_id or obj.category}@{size[0]:.3f}x{size[1]:.3f}x'
-                        f'{size[2]:.3f}', obj.category, size, style)
+                        f'{size[2]:.3f}', obj.category, size, 0 if v is None else v.style)
 
 
 def scene_mesh(scene) -> trimesh.Scene:
