@@ -111,23 +111,24 @@ def free_space(scene: Scene, robot_width: float = ROBOT_WIDTH):
     return free
 
 
+def door_parts(room: Room, free, robot_width: float = ROBOT_WIDTH):
+    """The pieces of the free space ``free`` and, per door, the index of the piece that holds
+    its entry point (None where the robot cannot stand inside that door)."""
+    parts = [p for p in getattr(free, 'geoms', [free]) if not p.is_empty]
+    owners = []
+    for door in room.doors:
+        p = door_entry_point(room, door, robot_width)
+        owners.append(next((i for i, part in enumerate(parts) if part.distance(p) < 1e-6),
+                           None))
+    return parts, owners
+
+
 def doors_connected(scene: Scene, robot_width: float = ROBOT_WIDTH) -> bool:
     """Whether the robot can stand inside every door and drive between all of them."""
-    doors = scene.room.doors
-    if not doors:
+    if not scene.room.doors:
         return True
-    free = free_space(scene, robot_width)
-    if free.is_empty:
-        return False
-    parts = list(getattr(free, 'geoms', [free]))
-    owners = set()
-    for door in doors:
-        p = door_entry_point(scene.room, door, robot_width)
-        hit = [i for i, part in enumerate(parts) if part.distance(p) < 1e-6]
-        if not hit:
-            return False
-        owners.add(hit[0])
-    return len(owners) == 1
+    _, owners = door_parts(scene.room, free_space(scene, robot_width), robot_width)
+    return None not in owners and len(set(owners)) == 1
 
 
 @dataclass

@@ -222,3 +222,31 @@ def save_grid(scenes: Sequence[Scene], path: str | os.PathLike, ncols: int = 3,
             fig.legend(handles=handles, loc='upper right', fontsize=7, frameon=False)
     fig.savefig(path, dpi=dpi, format='png')
     return os.fspath(path)
+
+
+REACHED_COLOR = (0.2, 0.7, 0.3, 0.35)
+UNREACHED_COLOR = '#d62728'
+
+
+def save_reach_png(scene: Scene, robot, path: str | os.PathLike, dpi: int = DEFAULT_DPI) -> str:
+    """The robot promise drawn (``robot.report``): the floor the robot's body drives over
+    from the doors in green, the objects it cannot reach outlined in red, the verdict as the
+    title."""
+    from shapely import get_parts
+
+    from .robot import driven_floor, report
+    found = report(scene, robot)
+    fig = Figure(figsize=DEFAULT_FIGSIZE, dpi=dpi)
+    ax = fig.add_axes((0.08, 0.08, 0.6, 0.84))
+    draw_scene(scene, ax=ax, title=f'{100 * found.reachable_floor:.0f} % of the free floor '
+               f'reachable for a {2 * robot.radius:g} m robot'
+               + ('' if found.kept else ': promise broken'))
+    pieces = [np.asarray(p.exterior.coords) for p in get_parts(driven_floor(scene, robot))
+              if p.geom_type == 'Polygon']
+    ax.add_collection(PolyCollection(pieces, facecolors=REACHED_COLOR, edgecolors='none',
+                                     zorder=3))
+    missed = [o.corners() for o in scene.first_tier if o.id in found.unreachable]
+    ax.add_collection(PolyCollection(missed, facecolors='none', edgecolors=UNREACHED_COLOR,
+                                     linewidths=2.0, zorder=8))
+    fig.savefig(path, dpi=dpi, format='png')
+    return os.fspath(path)

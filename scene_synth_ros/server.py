@@ -21,11 +21,15 @@ import threading
 import time
 from typing import Any, Callable
 
+from . import robot
 from .categories import CATEGORIES, ROOM_TYPE_ALIASES, ROOM_TYPES, resolve_room_type
 from .errors import SceneSynthError, UnknownRoomType, quoted, sentence, with_article
+from .export import FORMATS as EXPORT_FORMATS
+from .export import UnknownFormat, parse_formats
 from .files import write_atomic
 from .markers import MARKER_STYLES
 from .networks.config import resolve_device
+from .robot import CLEARANCE_RANGE, RADIUS_RANGE, REACH_RANGE, Robot
 from .scene import PlacedObject, Scene
 from .schema import dump_scene, parse_room_layout
 from .synth import MODULES, SynthConfig, SynthesisCancelled, Synthesizer, check_room_fits
@@ -49,11 +53,15 @@ class ServerConfig:
     marker_style: str = 'cube'
     auto_generate: bool = True          # furnish as soon as a layout arrives
     wall_height: float = 2.6            # for rooms that arrive as a bare polygon
-    export_dir: str = ''                # '' = no export; else JSON + SDF + glTF per room
+    export_dir: str = ''                # '' = no export; else the JSON + export_formats
+    export_formats: str = 'sdf,gltf'    # comma list of export.FORMATS written to export_dir
     torch_threads: int = 1              # 1 beat 2 on 2 cores beside a client (bench_node)
     max_pending: int = 4                # service calls that may wait for the worker
     next_category: str = ''             # what ~/next_object inserts; '' = the model decides
     suggestions: int = 5                # proposals in a ~/suggest answer
+    robot_radius: float = 0.2           # the robot every room is furnished for (robot.Robot)
+    robot_reach: float = 0.5
+    robot_clearance: float = 0.0
 
 
 # name -> (description, numeric range or allowed strings, read only). The node builds its
@@ -76,14 +84,22 @@ PARAMETERS: dict[str, tuple[str, Any, bool]] = {
     'marker_style': ('objects as boxes (cube) or catalog meshes (mesh)', MARKER_STYLES, False),
     'auto_generate': ('furnish a room as soon as its layout arrives', None, False),
     'wall_height': ('wall height of rooms arriving on ~/room_polygon (m)', (1.8, 6.0), False),
-    'export_dir': ("write every room served as JSON, SDF and glTF here; '' = off", None,
-                   False),
+    'export_dir': ("write every room served here as JSON and in each of export_formats; "
+                   "'' = off", None, False),
+    'export_formats': ('formats written to export_dir, a comma list of: '
+                       + ', '.join(EXPORT_FORMATS), None, False),
     'torch_threads': ('CPU threads torch may use', (1, 64), True),
     'max_pending': ('service calls that may wait for the worker; one more is answered '
                     '"busy" at once', (1, 6), False),
     'next_category': ("category of the objects ~/next_object inserts (e.g. office_chair); "
                       "'' = the category module chooses", None, False),
     'suggestions': ('how many proposals ~/suggest answers with', (1, 20), False),
+    'robot_radius': ('radius of the round robot every room is furnished for: it drives '
+                     'between all doors and reaches every object (m)', RADIUS_RANGE, False),
+    'robot_reach': ("the robot's arm's reach: how close its body must get to an object's "
+                    'front (m)', REACH_RANGE, False),
+    'robot_clearance': ('clearance the robot keeps from furniture and walls while driving '
+                        '(m)', CLEARANCE_RANGE, False),
 }
 REQUESTS = ('generate', 'next_object', 'reset', 'suggest')
 
@@ -141,6 +157,11 @@ def _check_text(name: str, value: Any, limits) -> str:
                               f'(`scene-synth catalog list` shows them)')
     if name == 'frame_id' and (not value or any(c.isspace() for c in value)):
         raise ConfigError(f'frame_id must be a non-empty name without spaces, got {value!r}')
+    if name == 'export_formats':
+        try:
+            return ','.join(parse_formats(value))
+        except UnknownFormat as e:
+            raise ConfigError(str(e)) from None
     if name == 'export_dir' and value:
         p = Path(value).expanduser()
         try:
@@ -228,6 +249,7 @@ class SceneServer:
                  on_seed: Callable[[int], None] | None = None):
         for f in fields(ServerConfig):
             setattr(config, f.name, check(f.name, getattr(config, f.name)))
+        robot_of(config)
         self.config = config
         self._publish = publish
         self._on_status = on_status or (lambda s: None)
@@ -263,6 +285,7 @@ class SceneServer:
             if PARAMETERS[name][2] and checked[name] != getattr(self.config, name):
                 raise ConfigError(f'{name} is read-only: set it when the node starts')
         new = replace(self.config, **checked)
+        robot_of(new)
         synth = None
         if (new.weights_dir, new.device) != (self.config.weights_dir, self.config.device):
             try:
@@ -412,7 +435,7 @@ class SceneServer:
             job.ok = True
             return
         synth.config = replace(synth.config, location_temperature=cfg.location_temperature,
-                               max_objects=cfg.max_objects)
+                               max_objects=cfg.max_objects, robot=robot_of(cfg))
         seed = self._take_seed()
         self._set_status(busy=True)
         try:
@@ -473,6 +496,8 @@ class SceneServer:
 
     def _commit(self, job: _Job, served: Served) -> bool:
         """Make ``served`` the current room and publish it, unless a newer layout came."""
+        promise = robot.report(served.scene, robot_of(self.config))
+        served.scene.meta['robot'] = promise.to_dict()
         served.json = dump_scene(served.scene)   # never publish what the schema would refuse
         with self._lock:
             stale = self._stale(job)
@@ -481,8 +506,12 @@ class SceneServer:
         if stale:
             self._supersede(job)
             return False
-        self._set_status(level=OK, message=f'{served.source}: {len(served.scene)} objects '
-                         f'in {with_article(served.scene.room.room_type)}',
+        message = (f'{served.source}: {len(served.scene)} objects in '
+                   f'{with_article(served.scene.room.room_type)}')
+        if not promise.kept:       # a user's objects broke it; synthesis never does
+            message += f', but {promise.sentence()}'
+            self._log('warn', message)
+        self._set_status(level=OK if promise.kept else WARN, message=message,
                          increment='rooms_served', objects=len(served.scene),
                          room_type=served.scene.room.room_type, seed=served.seed,
                          last_seconds=served.seconds, timings=dict(served.timings))
@@ -492,14 +521,16 @@ class SceneServer:
         return True
 
     def _export(self, served: Served, directory: Path) -> None:
-        """Write the room as JSON, SDF world and glTF; a failure is reported, not fatal."""
-        from .export import export_gltf, export_sdf
+        """Write the room as JSON and in every one of ``export_formats`` (mesh files shared
+        in ``meshes/``); a failure is reported, not fatal."""
+        from .export import FORMATS, parse_formats, write
         stem = f'room_{self.status.rooms_served:05d}'
         try:
             directory.mkdir(parents=True, exist_ok=True)
             write_atomic(directory / f'{stem}.json', served.json + '\n')
-            export_sdf(served.scene, directory / f'{stem}.sdf', directory / 'meshes')
-            export_gltf(served.scene, directory / f'{stem}.glb')
+            for fmt in parse_formats(self.config.export_formats):
+                write(served.scene, fmt, directory / f'{stem}{FORMATS[fmt].suffix}',
+                      directory / 'meshes')
         except OSError as e:
             text = f'export to {directory} failed: {e.strerror or e}'
             self._log('warn', text)
@@ -534,6 +565,14 @@ class SceneServer:
             self.status = replace(self.status, **changes)
             status = self.status
         self._on_status(status)
+
+
+def robot_of(config: ServerConfig) -> Robot:
+    """The robot of the node's parameters; ConfigError when they do not make one."""
+    try:
+        return Robot(config.robot_radius, config.robot_reach, config.robot_clearance)
+    except ValueError as e:
+        raise ConfigError(str(e)) from None
 
 
 def _answered(meta: dict) -> dict:

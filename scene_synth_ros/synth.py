@@ -10,10 +10,12 @@ Orientation: at each location the orientation module draws a facing, snapped to 
 axes when its classifier says so. Object Dimensions: the dimensions module draws a
 footprint. Object Insertion: the catalog model nearest that footprint is placed, preferring
 models that co-occur in the training rooms with those already there. A placement is rejected
-if it collides with first-tier furniture, leaves the floor, enters a door's clear zone, cuts
-the robot path between the doors, or (second tier) stands less than 70 % on its parent or
-overlaps its neighbours there; then the next model is tried, then the next location, and if
-nothing fits the category is drawn again without the failed ones.
+if it collides with first-tier furniture, leaves the floor, enters a door's clear zone,
+breaks the robot promise (``robot``: the configured robot must still drive between the doors
+and reach every object it reached, and the new one), or (second tier) stands less than 70 %
+on its parent or overlaps its neighbours there; then the next model is tried, then the next
+location, and if nothing fits the category is drawn again without the failed ones. An empty
+room in which the robot cannot drive between the doors is refused in one sentence.
 
 Three modes: ``generate`` (an empty room), ``complete`` (a partial room: keeps what is
 there) and ``suggest`` (k distinct proposals for the next object, nothing committed). Each is
@@ -34,14 +36,13 @@ import shapely
 from shapely.geometry import Polygon
 import torch
 
-from . import catalog
+from . import catalog, robot
 from .categories import CATEGORIES, RoomTypeSpec, resolve_room_type, room_spec
 from .errors import SceneSynthError, UnknownCategory, quoted
 from .geometry import (
     FLOOR_TOLERANCE,
     MIN_SUPPORT,
     door_zone,
-    doors_connected,
     enters_zone,
     overlaps_any,
     support_fraction,
@@ -52,6 +53,7 @@ from .networks.config import resolve_device
 from .networks.location import location_distribution, sample_pixel
 from .networks.orientation import decode_angle, snap_angle
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer
+from .robot import Robot, RobotReport, RobotState
 from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
 
 # What ``Synthesis.timings`` counts seconds of (see the module docstring).
@@ -148,6 +150,7 @@ class SynthConfig:
     fit_slack: float = 0.15             # log-footprint slack within which co-occurrence decides
     snap_threshold: float = 0.5         # snap when the classifier's probability is above this
     wall_reach: float = 0.15            # push first-tier objects this close to a wall onto it
+    robot: Robot = Robot()              # the robot every room is furnished for (``robot``)
     device: str = 'cpu'
 
 
@@ -160,6 +163,7 @@ class Synthesis:
     stopped: str                        # 'stop', 'max_objects' or 'nothing_fits'
     seconds: float
     timings: dict[str, float] = field(default_factory=dict)   # seconds per module
+    robot: RobotReport | None = None     # the robot promise measured on ``scene``
 
 
 @dataclass
@@ -178,8 +182,8 @@ class _Context:
     rng: np.random.Generator
     gen: torch.Generator
     timings: dict[str, float] = field(default_factory=lambda: dict.fromkeys(MODULES, 0.0))
-    # (id of the scene, its object count) -> whether its doors are connected
-    connected: dict[tuple[int, int], bool] = field(default_factory=dict)
+    # (id of the scene, its object count) -> the robot in it (``robot.state``)
+    robot: dict[tuple[int, int], RobotState] = field(default_factory=dict)
 
     @contextmanager
     def timed(self, module: str) -> Iterator[None]:
@@ -267,6 +271,14 @@ class Synthesizer:
         t0 = time.perf_counter()
         ctx = self._context(scene.room, seed, scene.objects)
         out = scene.copy()
+        if not scene.first_tier and not self._robot_state(ctx, out).doors_connected:
+            r = self.config.robot
+            raise SynthesisError(
+                f'a robot of radius {r.radius:g} m'
+                + (f' keeping {r.clearance:g} m clear' if r.clearance else '')
+                + ' cannot drive between the doors of this room even when it is empty, so '
+                'nothing can be placed under the robot promise: lower robot_radius or widen '
+                'the room')
         added: list[PlacedObject] = []
         stopped = 'stop'
         with torch.inference_mode():
@@ -282,9 +294,11 @@ class Synthesizer:
                     break
                 out.objects.append(obj)
                 added.append(obj)
+        kept = robot.report(out, self.config.robot)
         out.meta.update({'generator': 'scene_synth_ros', 'seed': int(seed),
-                         'weights': ctx.bundle.config.name})
-        return Synthesis(out, added, stopped, time.perf_counter() - t0, dict(ctx.timings))
+                         'weights': ctx.bundle.config.name, 'robot': kept.to_dict()})
+        return Synthesis(out, added, stopped, time.perf_counter() - t0, dict(ctx.timings),
+                         kept)
 
     def next_object(self, scene: Scene, seed: int = 0,
                     category: str | None = None) -> PlacedObject | None:
@@ -542,15 +556,18 @@ class Synthesizer:
             return False
         if any(enters_zone(obj, z) for z in ctx.zones):
             return False
-        # The robot path: required to stay open if it was open before this object.
+        # The robot promise: what held before this object must hold after it, and the robot
+        # must reach the object itself.
         if ctx.room.doors:
-            key = (id(scene), len(scene.objects))
-            before = ctx.connected.get(key)
-            if before is None:
-                before = ctx.connected[key] = doors_connected(scene)
-            if before and not doors_connected(Scene(scene.room, scene.objects + [obj])):
-                return False
+            return robot.keeps(self._robot_state(ctx, scene),
+                               Scene(scene.room, scene.objects + [obj]), self.config.robot)
         return True
+
+    def _robot_state(self, ctx: _Context, scene: Scene) -> RobotState:
+        key = (id(scene), len(scene.objects))
+        if key not in ctx.robot:
+            ctx.robot[key] = robot.state(scene, self.config.robot)
+        return ctx.robot[key]
 
 
 def _distinct(a: PlacedObject, b: PlacedObject) -> bool:

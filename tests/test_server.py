@@ -171,6 +171,35 @@ def test_parameters_are_checked_and_applied(server):
     assert served.seed == 40 and len(served.scene) <= 1
 
 
+def test_rooms_are_furnished_for_the_robot_of_the_parameters(server):
+    with pytest.raises(ConfigError, match='robot_radius must be between 0.05 and 0.5'):
+        server.reconfigure({'robot_radius': 0.9})
+    with pytest.raises(ConfigError, match='must be less than its reach'):
+        server.reconfigure({'robot_clearance': 0.3, 'robot_reach': 0.2})
+    server.reconfigure({'robot_radius': 0.3, 'robot_clearance': 0.05})
+    server.submit_layout(LAYOUT)
+    meta = parse_scene(server.rec.wait(1).json).meta['robot']
+    assert (meta['radius'], meta['reach'], meta['clearance']) == (0.3, 0.5, 0.05)
+    assert meta['promise_kept'] and meta['unreachable'] == []
+    assert server.request('next_object')[0]
+    assert parse_scene(server.rec.wait(2).json).meta['robot']['promise_kept']
+    # A room given as it is (auto_generate off) whose objects break the promise is
+    # published, with one sentence saying so.
+    server.reconfigure({'auto_generate': False})
+    sealed = json.loads(PARTIAL)
+    sealed['objects'] = [
+        {'id': 'wardrobe_0', 'category': 'wardrobe', 'model_id': 'wardrobe_04',
+         'position': [1.0, 3.3, 0], 'yaw': -1.5708, 'size': [1.6, 0.6, 2.0]},
+        {'id': 'bed_0', 'category': 'double bed', 'model_id': 'double_bed_06',
+         'position': [1.0, 2.05, 0], 'yaw': -1.5708, 'size': [2.0, 1.6, 0.5]}]
+    server.submit_layout(json.dumps(sealed))
+    served = server.rec.wait(3)
+    assert served.scene.meta['robot']['unreachable'] == ['wardrobe_0']
+    assert server.status.level == WARN
+    assert 'but a robot of radius 0.3 m keeping 0.05 m clear cannot reach wardrobe_0' in \
+        server.status.message
+
+
 def test_auto_generate_off_publishes_the_room_as_given(server):
     server.reconfigure({'auto_generate': False})
     server.submit_layout(PARTIAL)

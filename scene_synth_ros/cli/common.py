@@ -61,3 +61,26 @@ def write_scene(scene, out: str | None, png: str | None, title: str) -> None:
         Path(png).parent.mkdir(parents=True, exist_ok=True)
         save_png(scene, png, title=title)
         print(f'wrote {png}')
+
+
+def robot_options(c) -> None:
+    """The robot every room is furnished for (``robot.Robot``)."""
+    from ..robot import Robot
+    d = Robot()
+    c.add_argument('--robot-radius', type=float, default=d.radius,
+                   help=f'radius of the round robot that must drive between all doors and '
+                   f'reach every object (default {d.radius} m)')
+    c.add_argument('--robot-reach', type=float, default=d.reach,
+                   help=f"the robot's arm's reach to an object's front (default {d.reach} m)")
+    c.add_argument('--robot-clearance', type=float, default=d.clearance,
+                   help='clearance it keeps from furniture and walls while driving '
+                   f'(default {d.clearance} m)')
+
+
+def robot_from(args):
+    """The ``robot.Robot`` of ``robot_options``; UserError when they make none."""
+    from ..robot import Robot
+    try:
+        return Robot(args.robot_radius, args.robot_reach, args.robot_clearance)
+    except ValueError as e:
+        raise UserError(f'--{e}'.replace('--robot ', '--robot-')) from None

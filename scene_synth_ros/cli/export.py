@@ -1,19 +1,28 @@
 """``scene-synth validate``, ``render`` and ``export``: one scene file checked, drawn, or
-written for a simulator (a Gazebo SDF world, a binary glTF)."""
+written for a simulator (Gazebo SDF, glTF, MuJoCo MJCF, URDF for PyBullet, OpenUSD)."""
 from __future__ import annotations
 
 from pathlib import Path
 
-from .common import UserError, load_scene_file
+from .common import UserError, load_scene_file, robot_from, robot_options
 
 
 def add_parser(sub) -> None:
-    c = sub.add_parser('export', help='write a scene as a Gazebo SDF world and/or one glTF')
+    c = sub.add_parser('export', help='write a scene for simulators: Gazebo SDF, glTF, MuJoCo '
+                       'MJCF, URDF for PyBullet, OpenUSD')
     c.add_argument('scene', help='a scene JSON')
-    c.add_argument('--sdf', help='the world file to write')
-    c.add_argument('--mesh-dir', help='where the SDF\'s OBJ meshes go (default: '
-                   '<world>_meshes/ beside it)')
+    c.add_argument('--sdf', help='the Gazebo world file to write (SDF 1.9)')
+    c.add_argument('--sdf-model', help='the room as one SDF model, to spawn into a running '
+                   'world (ros_gz_sim create)')
     c.add_argument('--gltf', help='the binary glTF (.glb) to write')
+    c.add_argument('--mjcf', help='the MuJoCo model (.xml) to write')
+    c.add_argument('--urdf', help='the room URDF to write; the objects\' URDFs go to '
+                   '<stem>_objects/, their poses to <stem>.poses.json')
+    c.add_argument('--usd', help='the USD stage to write (.usda text, .usd or .usdc binary)')
+    c.add_argument('--mesh-dir', help='where the mesh files go (default: <stem>_meshes/ '
+                   'beside each file written)')
+    c.add_argument('--fixed', action='store_true', help='furniture static instead of '
+                   'dynamic bodies (SDF, MJCF, URDF, USD)')
     c.set_defaults(func=cmd_export)
 
     c = sub.add_parser('render', help='draw a scene JSON as a top-down picture')
@@ -28,18 +37,32 @@ def add_parser(sub) -> None:
     c.add_argument('files', nargs='+')
     c.set_defaults(func=cmd_validate)
 
+    c = sub.add_parser('reach', help='the robot promise measured on scene files: doors '
+                       'connected, every object reachable, the share of free floor reachable '
+                       '(exit 1 when a file breaks it)')
+    c.add_argument('files', nargs='+')
+    robot_options(c)
+    c.add_argument('--png', help='a picture of the reachable floor (one file only)')
+    c.set_defaults(func=cmd_reach)
+
 
 def cmd_export(args) -> int:
-    from ..export import export_gltf, export_sdf
+    from ..export import export_sdf, write
     scene = load_scene_file(args.scene)
-    if not (args.sdf or args.gltf):
-        raise UserError('export needs --sdf and/or --gltf to know what to write')
-    if args.sdf:
-        export_sdf(scene, args.sdf, args.mesh_dir)
-        print(f'wrote {args.sdf} ({len(scene.objects)} objects)')
-    if args.gltf:
-        export_gltf(scene, args.gltf)
-        print(f'wrote {args.gltf}')
+    wanted = [(fmt, getattr(args, fmt)) for fmt in ('sdf', 'gltf', 'mjcf', 'urdf', 'usd')
+              if getattr(args, fmt)]
+    if not (wanted or args.sdf_model):
+        raise UserError('export needs --sdf, --sdf-model, --gltf, --mjcf, --urdf and/or --usd '
+                        'to know what to write')
+    for fmt, path in wanted + ([('sdf-model', args.sdf_model)] if args.sdf_model else []):
+        try:
+            if fmt == 'sdf-model':
+                export_sdf(scene, path, args.mesh_dir, fixed=args.fixed, root='model')
+            else:
+                write(scene, fmt, path, args.mesh_dir, fixed=args.fixed)
+        except OSError as e:
+            raise UserError(f'cannot write {path}: {e.strerror or e}') from None
+        print(f'wrote {path} ({fmt}, {len(scene.objects)} objects)')
     return 0
 
 
@@ -73,3 +96,22 @@ def cmd_validate(args) -> int:
         report = check_scene(scene)
         print(f'{path}: schema OK, {len(scene)} objects, physically {report.summary()}')
     return 0
+
+
+def cmd_reach(args) -> int:
+    from ..robot import report
+    robot = robot_from(args)
+    if args.png and len(args.files) > 1:
+        raise UserError('--png draws one scene: give one file')
+    broken = 0
+    for path in args.files:
+        scene = load_scene_file(path)
+        found = report(scene, robot)
+        broken += not found.kept
+        print(f'{path}: {found.sentence()}')
+        if args.png:
+            from ..plot import save_reach_png
+            Path(args.png).parent.mkdir(parents=True, exist_ok=True)
+            save_reach_png(scene, robot, args.png)
+            print(f'wrote {args.png}')
+    return 1 if broken else 0

@@ -12,6 +12,8 @@ from .common import (
     UserError,
     load_scene_file,
     object_table,
+    robot_from,
+    robot_options,
     room_types,
     write_scene,
 )
@@ -63,6 +65,7 @@ def _synthesis_options(c, out: bool = True) -> None:
     c.add_argument('--max-objects', type=int, help='cap on objects in the room (default 30)')
     c.add_argument('--weights-dir', help=WEIGHTS_DIR_HELP)
     c.add_argument('--device', choices=('cpu', 'cuda', 'auto'))
+    robot_options(c)
     if out:
         c.add_argument('--out', help='write the scene JSON here')
     c.add_argument('--png', help='write a top-down picture here')
@@ -82,6 +85,8 @@ def _synthesizer(args):
         cfg.max_objects = args.max_objects
     if getattr(args, 'device', None):
         cfg.device = args.device
+    if hasattr(args, 'robot_radius'):
+        cfg.robot = robot_from(args)
     return Synthesizer(args.weights_dir, cfg)
 
 
@@ -108,6 +113,7 @@ def cmd_generate(args) -> int:
     print(object_table(result.scene.objects, f'{room.room_type}, {room.area:.1f} m2:'))
     print(_timing_line(result))
     print(f'physical check: {check_scene(result.scene).summary()}')
+    print(f'robot: {result.robot.sentence()}')
     write_scene(result.scene, args.out, args.png, title)
     return 0
 
@@ -121,6 +127,7 @@ def cmd_complete(args) -> int:
     print(object_table(result.added, f'added ({len(result.added)}):'))
     print(_timing_line(result))
     print(f'physical check: {check_scene(result.scene).summary()}')
+    print(f'robot: {result.robot.sentence()}')
     write_scene(result.scene, args.out, args.png,
                 f'{Path(args.scene).stem} completed (seed {args.seed})')
     return 0

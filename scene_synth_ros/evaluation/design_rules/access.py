@@ -46,10 +46,10 @@ front_reachable
     operated at the front (``OPERATED_FRONT``: storage, nightstand, TV stand, desk, bathroom
     fixtures, piano, fireplace, whiteboard, water machine), anywhere around its footprint
     for the others (beds, seats, tables, lamps: used from a side, or moved to be used).
-    Where the robot's centre can be is ``geometry.free_space``, computed once per room;
-    the robot can drive to its components that hold the ``geometry.door_entry_point`` of a
-    door. Reaching a front corner from the side does not count: a wardrobe behind a bed
-    with a 0.3 m gap is not reached.
+    This is ``robot.unreachable`` for that robot (``RULE_ROBOT``): where its centre can be
+    is ``geometry.free_space``, computed once per room, and it can drive to the pieces of it
+    that hold a door's ``geometry.door_entry_point``. Reaching a front corner from the side
+    does not count: a wardrobe behind a bed with a 0.3 m gap is not reached.
 
 room_fully_reachable
     Case: a room with at least one door. Kept when every first-tier object of the room
@@ -64,8 +64,10 @@ import shapely
 from shapely.geometry import Polygon
 from shapely.prepared import prep
 
-from ...geometry import ROBOT_WIDTH, door_entry_point, free_space, shrunk_footprint
-from ...scene import PlacedObject, Scene, box_corners
+from ... import robot
+from ...geometry import ROBOT_WIDTH, shrunk_footprint
+from ...robot import OPERATED_FRONT, Robot
+from ...scene import PlacedObject, Scene
 from . import BEDS, Outcome, Rule
 from .spatial import side
 
@@ -98,18 +100,16 @@ BED_STRETCH = 0.6
 # Fronts a person uses: one should not face a wall closer than 0.3 m (a wardrobe's doors, a
 # chair's knees, a toilet's user).
 WALL_CLEARANCE = 0.3
-OPERATED_FRONT = STORAGE + tuple(FIXTURE_CLEARANCE) + (
-    'stand', 'tv stand', 'desk', 'piano', 'fireplace', 'whiteboard', 'water machine')
+assert set(STORAGE) | set(FIXTURE_CLEARANCE) <= set(OPERATED_FRONT)
 USED_FRONT = OPERATED_FRONT + BEDS + (
     'sofa', 'sofa chair', 'armchair', 'office chair', 'straight chair', 'chair')
 
 # The robot reaches an object when its body gets within 0.15 m of it: close enough to look at
-# or grasp what is there, without asking for a free corridor wider than the robot.
+# or grasp what is there, without asking for a free corridor wider than the robot. (The
+# product's robot promise, ``robot.Robot``, defaults to an arm's reach of 0.5 m; this rule
+# asks more, as a designer would.)
 ROBOT_REACH = 0.15
-# A reach zone that the free space meets only along its edge is touched, not entered: the
-# zones are inset by a millimetre.
-INSET = 1e-3
-
+RULE_ROBOT = Robot(radius=ROBOT_WIDTH / 2, reach=ROBOT_REACH)
 
 # ---- clear strips ------------------------------------------------------------------------
 def _strip(obj: PlacedObject, which: str, depth: float) -> tuple[Polygon, np.ndarray, float]:
@@ -235,36 +235,15 @@ def front_not_to_wall(scene: Scene) -> Outcome:
 
 
 # ---- the robot ---------------------------------------------------------------------------
-def reach_zone(obj: PlacedObject, robot_width: float = ROBOT_WIDTH) -> Polygon:
-    """Where the robot's centre may be to reach ``obj``: straight in front of the front side
-    and within the robot's radius plus ``ROBOT_REACH`` of it (``OPERATED_FRONT``), or within
-    that distance of the footprint (other objects)."""
-    r = robot_width / 2 + ROBOT_REACH - INSET
-    if obj.category not in OPERATED_FRONT:
-        return obj.footprint().buffer(r)
-    centre = np.asarray(obj.position[:2]) + obj.front * (obj.depth + r) / 2
-    return Polygon(box_corners(centre[0], centre[1], obj.yaw, obj.width - 2 * INSET, r))
-
-
-def door_reachable_space(scene: Scene, robot_width: float = ROBOT_WIDTH):
-    """The parts of ``geometry.free_space`` that hold a door's entry point: where the robot's
-    centre can go after driving in (empty without doors)."""
-    free = free_space(scene, robot_width)
-    parts = [p for p in getattr(free, 'geoms', [free]) if not p.is_empty]
-    entries = [door_entry_point(scene.room, d, robot_width) for d in scene.room.doors]
-    return shapely.union_all([p for p in parts if any(p.distance(e) < 1e-6 for e in entries)])
-
-
-def unreachable(scene: Scene, robot_width: float = ROBOT_WIDTH) -> list[PlacedObject]:
-    """First-tier objects the robot cannot reach from a door (see ``front_reachable``)."""
+def unreachable(scene: Scene) -> list[PlacedObject]:
+    """First-tier objects the rule's robot cannot reach from a door (see
+    ``front_reachable``)."""
     objects = scene.first_tier
-    key = (robot_width, [(o.category, o.position, o.yaw, o.size) for o in objects])
+    key = [(o.category, o.position, o.yaw, o.size) for o in objects]
     last = _last_room.get('unreachable')
     if last is None or last[0] is not scene.room or last[1] != key:
-        space = door_reachable_space(scene, robot_width)
-        fast = prep(space)
-        missed = [k for k, o in enumerate(objects)
-                  if space.is_empty or not fast.intersects(reach_zone(o, robot_width))]
+        reached = robot.state(scene, RULE_ROBOT).reached
+        missed = [k for k in range(len(objects)) if k not in reached]
         last = _last_room['unreachable'] = (scene.room, key, missed)
     return [objects[k] for k in last[2]]
 
