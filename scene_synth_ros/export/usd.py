@@ -1,0 +1,210 @@
+"""A furnished room as an OpenUSD stage, for Isaac Sim and Omniverse.
+
+The stage is Z up in metres (``upAxis = Z``, ``metersPerUnit = 1``, ``kilogramsPerUnit =
+1``) with ``/World`` as its default prim:
+
+- ``/World/PhysicsScene``: a ``UsdPhysics.Scene``, gravity 9.81 m/s^2 along -Z;
+- ``/World/Room``: the floor (the outline's slab as a mesh, a collider with the exact
+  triangles, ``approximation = none``, which PhysX allows for static colliders) and the wall
+  pieces as cubes, all static colliders (no rigid body);
+- ``/World/Objects/<object>``: one Xform per object at its pose (translate, rotateZ) with
+  ``Visual``, a reference to its catalog model (``<model>.usdc`` in the mesh folder: one
+  mesh per material, each bound to a UsdPreviewSurface), and ``Collision``, one cube per
+  collision piece of ``physics`` (``CollisionAPI``, purpose ``guide`` so renderers skip
+  them). A dynamic object has ``RigidBodyAPI`` and ``MassAPI`` (mass, centre of mass,
+  principal moments and axes); a fixed one (``fixed=True``) is a static collider;
+- ``/World/PhysicsMaterials/furniture``: friction ``PhysicsConfig.friction``, restitution 0,
+  bound with the ``physics`` purpose to every collider.
+
+Each object prim also carries its scene id and category as ``scene_synth:id`` and
+``scene_synth:category`` attributes.
+"""
+from __future__ import annotations
+
+import errno
+import math
+import os
+from pathlib import Path
+import tempfile
+
+import numpy as np
+
+from ..catalog import ModelVariant
+from ..meshes import MATERIALS, material_meshes
+from ..scene import Scene
+from .architecture import FLOOR_RGBA, WALL_RGBA, floor_slab, wall_boxes
+from .meshfiles import MeshFolder
+from .physics import DEFAULT_PHYSICS, GRAVITY, Body, PhysicsConfig, scene_bodies
+
+
+def _identifier(text: str, taken: set[str]) -> str:
+    """A prim name for ``text``, unique among ``taken``."""
+    from pxr import Tf
+    name = Tf.MakeValidIdentifier(text)
+    out, k = name, 1
+    while out in taken:
+        out, k = f'{name}_{k}', k + 1
+    taken.add(out)
+    return out
+
+
+def _surface(stage, path: str, rgba, metallic: float, roughness: float):
+    from pxr import Gf, Sdf, UsdShade
+    material = UsdShade.Material.Define(stage, path)
+    shader = UsdShade.Shader.Define(stage, f'{path}/Surface')
+    shader.CreateIdAttr('UsdPreviewSurface')
+    shader.CreateInput('diffuseColor', Sdf.ValueTypeNames.Color3f).Set(Gf.Vec3f(*rgba[:3]))
+    shader.CreateInput('opacity', Sdf.ValueTypeNames.Float).Set(float(rgba[3]))
+    shader.CreateInput('metallic', Sdf.ValueTypeNames.Float).Set(float(metallic))
+    shader.CreateInput('roughness', Sdf.ValueTypeNames.Float).Set(float(roughness))
+    material.CreateSurfaceOutput().ConnectToSource(shader.ConnectableAPI(), 'surface')
+    return material
+
+
+def _mesh(stage, path: str, vertices, faces):
+    from pxr import UsdGeom, Vt
+    mesh = UsdGeom.Mesh.Define(stage, path)
+    vertices = np.asarray(vertices, dtype=float)
+    mesh.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(vertices.astype(np.float32)))
+    mesh.CreateFaceVertexCountsAttr(Vt.IntArray([3] * len(faces)))
+    mesh.CreateFaceVertexIndicesAttr(Vt.IntArray([int(i) for i in np.asarray(faces).ravel()]))
+    mesh.CreateSubdivisionSchemeAttr('none')
+    mesh.CreateExtentAttr([tuple(vertices.min(axis=0)), tuple(vertices.max(axis=0))])
+    return mesh
+
+
+def model_layer_bytes(variant: ModelVariant) -> bytes:
+    """The catalog model as a USD crate file: ``/Model`` (the default prim) with one mesh
+    per material, bound to ``/Model/Looks/<material>``."""
+    from pxr import Usd, UsdGeom, UsdShade
+    stage = Usd.Stage.CreateInMemory()
+    UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.z)
+    UsdGeom.SetStageMetersPerUnit(stage, 1.0)
+    root = UsdGeom.Xform.Define(stage, '/Model')
+    stage.SetDefaultPrim(root.GetPrim())
+    taken: set[str] = {'Looks'}
+    for material, part in material_meshes(variant).items():
+        name = _identifier(material, taken)
+        m = MATERIALS[material]
+        look = _surface(stage, f'/Model/Looks/{name}', np.asarray(m.rgba) / 255.0, m.metallic,
+                        m.roughness)
+        mesh = _mesh(stage, f'/Model/{name}', part.vertices, part.faces)
+        UsdShade.MaterialBindingAPI.Apply(mesh.GetPrim()).Bind(look)
+    fd, tmp = tempfile.mkstemp(suffix='.usdc')
+    os.close(fd)
+    try:
+        stage.GetRootLayer().Export(tmp)
+        return Path(tmp).read_bytes()
+    finally:
+        os.unlink(tmp)
+
+
+def _place(xformable, translate, yaw: float = 0.0, scale=None) -> None:
+    from pxr import Gf
+    xformable.AddTranslateOp().Set(Gf.Vec3d(*(float(v) for v in translate)))
+    xformable.AddRotateZOp().Set(math.degrees(yaw))
+    if scale is not None:
+        xformable.AddScaleOp().Set(Gf.Vec3f(*(float(v) for v in scale)))
+
+
+def _collider(stage, path: str, centre, yaw: float, size, physics_material):
+    from pxr import UsdGeom, UsdPhysics, UsdShade
+    cube = UsdGeom.Cube.Define(stage, path)
+    cube.CreateSizeAttr(1.0)
+    _place(cube, centre, yaw, size)
+    UsdPhysics.CollisionAPI.Apply(cube.GetPrim())
+    UsdShade.MaterialBindingAPI.Apply(cube.GetPrim()).Bind(
+        physics_material, UsdShade.Tokens.weakerThanDescendants, 'physics')
+    return cube
+
+
+def _room(stage, scene: Scene, physics_material) -> None:
+    from pxr import UsdGeom, UsdPhysics, UsdShade
+    UsdGeom.Xform.Define(stage, '/World/Room')
+    floor_look = _surface(stage, '/World/Looks/floor', FLOOR_RGBA, 0.0, 0.9)
+    wall_look = _surface(stage, '/World/Looks/wall', WALL_RGBA, 0.0, 0.9)
+    slab = floor_slab(scene.room)
+    floor = _mesh(stage, '/World/Room/Floor', slab.vertices, slab.faces)
+    UsdShade.MaterialBindingAPI.Apply(floor.GetPrim()).Bind(floor_look)
+    UsdPhysics.CollisionAPI.Apply(floor.GetPrim())
+    UsdPhysics.MeshCollisionAPI.Apply(floor.GetPrim()).CreateApproximationAttr('none')
+    UsdShade.MaterialBindingAPI(floor.GetPrim()).Bind(
+        physics_material, UsdShade.Tokens.weakerThanDescendants, 'physics')
+    for box in wall_boxes(scene.room):
+        cube = _collider(stage, f'/World/Room/{box.name}', box.centre, box.yaw, box.size,
+                         physics_material)
+        UsdShade.MaterialBindingAPI(cube.GetPrim()).Bind(wall_look)
+
+
+def _object(stage, path: str, body: Body, model_file: str, fixed: bool,
+            physics_material) -> None:
+    from pxr import Gf, Sdf, UsdGeom, UsdPhysics
+    xform = UsdGeom.Xform.Define(stage, path)
+    _place(xform, body.position, body.yaw)
+    prim = xform.GetPrim()
+    prim.CreateAttribute('scene_synth:id', Sdf.ValueTypeNames.String).Set(body.id)
+    prim.CreateAttribute('scene_synth:category', Sdf.ValueTypeNames.String).Set(body.category)
+    visual = UsdGeom.Xform.Define(stage, f'{path}/Visual')
+    visual.GetPrim().GetReferences().AddReference(model_file)
+    UsdGeom.Scope.Define(stage, f'{path}/Collision')
+    for k, piece in enumerate(body.pieces):
+        cube = _collider(stage, f'{path}/Collision/piece_{k}', piece.centre, 0.0, piece.size,
+                         physics_material)
+        cube.CreatePurposeAttr(UsdGeom.Tokens.guide)
+    if fixed:
+        return
+    UsdPhysics.RigidBodyAPI.Apply(prim)
+    mass = UsdPhysics.MassAPI.Apply(prim)
+    mass.CreateMassAttr(float(body.mass))
+    mass.CreateCenterOfMassAttr(Gf.Vec3f(*body.com))
+    moments, axes = body.principal_inertia()
+    mass.CreateDiagonalInertiaAttr(Gf.Vec3f(*(float(v) for v in moments)))
+    q = Gf.Matrix3d(*(float(v) for v in axes.T.ravel())).ExtractRotation().GetQuat()
+    mass.CreatePrincipalAxesAttr(Gf.Quatf(q))
+
+
+def export_usd(scene: Scene, path: str | Path, mesh_dir: str | Path | None = None,
+               fixed: bool = False, physics: PhysicsConfig = DEFAULT_PHYSICS) -> Path:
+    """Write ``scene`` as a USD stage to ``path`` (``.usda`` text, ``.usd``/``.usdc``
+    binary); each catalog model goes to ``mesh_dir`` (default ``<stem>_meshes/`` beside the
+    file) as a ``.usdc`` layer the stage references by relative path. ``fixed`` makes the
+    furniture static colliders instead of rigid bodies."""
+    from pxr import Gf, Sdf, Tf, Usd, UsdGeom, UsdPhysics, UsdShade
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    meshes = MeshFolder(mesh_dir or path.parent / f'{path.stem}_meshes', path.parent)
+    # Authored in a layer at its destination, so that the relative references to the model
+    # files resolve while the stage composes (an anonymous layer has no folder).
+    try:
+        layer = Sdf.Layer.FindOrOpen(str(path)) if path.exists() else None
+        if layer is None:
+            layer = Sdf.Layer.CreateNew(str(path))
+    except Tf.ErrorException:
+        layer = None
+    if layer is None:
+        raise OSError(errno.EACCES, f'USD cannot create a layer at {path}')
+    layer.Clear()
+    stage = Usd.Stage.Open(layer)
+    UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.z)
+    UsdGeom.SetStageMetersPerUnit(stage, 1.0)
+    UsdPhysics.SetStageKilogramsPerUnit(stage, 1.0)
+    world = UsdGeom.Xform.Define(stage, '/World')
+    stage.SetDefaultPrim(world.GetPrim())
+    physics_scene = UsdPhysics.Scene.Define(stage, '/World/PhysicsScene')
+    physics_scene.CreateGravityDirectionAttr(Gf.Vec3f(0, 0, -1))
+    physics_scene.CreateGravityMagnitudeAttr(GRAVITY)
+    physics_material = UsdShade.Material.Define(stage, '/World/PhysicsMaterials/furniture')
+    surface = UsdPhysics.MaterialAPI.Apply(physics_material.GetPrim())
+    surface.CreateStaticFrictionAttr(physics.friction)
+    surface.CreateDynamicFrictionAttr(physics.friction)
+    surface.CreateRestitutionAttr(0.0)
+    _room(stage, scene, physics_material)
+    UsdGeom.Xform.Define(stage, '/World/Objects')
+    taken: set[str] = set()
+    for body in scene_bodies(scene, physics):
+        model_file = './' + meshes.relative(meshes.usd(body.variant))
+        name = _identifier(body.id, taken)
+        _object(stage, f'/World/Objects/{name}', body, model_file, fixed, physics_material)
+    if not layer.Save():
+        raise OSError(errno.EACCES, f'USD cannot save {path}')
+    return path

@@ -1,0 +1,212 @@
+"""Exported rooms loaded and simulated in the real engines: MuJoCo (MJCF) and PyBullet (URDF).
+
+The rest test (``export.rest``): 2 s under gravity from the exported poses, then no object
+moved more than 1 cm or turned more than 1 degree, no contact ever penetrated more than
+5 mm, nothing sank below the floor. Over corpus rooms and synthesized rooms of every type
+(L-shaped ones among them) and the example scenes; and it fails a room that is wrong.
+"""
+from functools import lru_cache
+import json
+import math
+from xml.etree import ElementTree as ET
+
+from conftest import EXAMPLES
+import numpy as np
+import pytest
+
+from scene_synth_ros.corpus import HELDOUT_SEED
+from scene_synth_ros.corpus.generate import empty_room, generate_room
+from scene_synth_ros.export import export_mjcf, export_urdf, scene_bodies, wall_boxes
+from scene_synth_ros.export.rest import (
+    RestLimits,
+    RestReport,
+    _origin,
+    load_pybullet,
+    mujoco_rest,
+    pybullet_rest,
+)
+from scene_synth_ros.export.urdf import poses_path
+from scene_synth_ros.scene import PlacedObject
+from scene_synth_ros.schema import load_scene
+
+mujoco = pytest.importorskip('mujoco')
+pybullet = pytest.importorskip('pybullet')
+
+# name -> how to make it: ('corpus', type, index) rooms of corpus seed 5, ('synth', type,
+# index) held-out shells furnished by the shipped weights, ('example', file, seed).
+ROOMS = {
+    'corpus-bedroom': ('corpus', 'bedroom', 0), 'corpus-bedroom-L': ('corpus', 'bedroom', 4),
+    'corpus-living-L': ('corpus', 'living', 0), 'corpus-living': ('corpus', 'living', 1),
+    'corpus-office': ('corpus', 'office', 0), 'corpus-office-L': ('corpus', 'office', 5),
+    'corpus-bathroom': ('corpus', 'bathroom', 0),
+    'corpus-bathroom-L': ('corpus', 'bathroom', 10),
+    'synth-bedroom-L': ('synth', 'bedroom', 1), 'synth-living-L': ('synth', 'living', 0),
+    'synth-office': ('synth', 'office', 0), 'synth-bathroom-L': ('synth', 'bathroom', 2),
+    'example-bedroom': ('example', 'bedroom_layout.json', 0),
+    'example-lshaped-living': ('example', 'lshaped_living_layout.json', 1),
+    'example-partial-bedroom': ('example', 'partial_bedroom.json', None),
+}
+
+
+@lru_cache(maxsize=1)
+def _synthesizer():
+    from scene_synth_ros.synth import Synthesizer
+    return Synthesizer()
+
+
+@lru_cache(maxsize=None)
+def room(name: str):
+    source, what, k = ROOMS[name]
+    if source == 'corpus':
+        return generate_room(what, 5, k)
+    if source == 'synth':
+        return _synthesizer().generate(empty_room(what, HELDOUT_SEED, k), seed=k).scene
+    scene = load_scene(EXAMPLES / what)
+    return scene if k is None else _synthesizer().generate(scene.room, seed=k).scene
+
+
+def test_the_rooms_cover_every_type_and_l_shapes():
+    scenes = [room(n) for n in ROOMS]
+    assert {s.room.room_type for s in scenes} == {'bedroom', 'living', 'office', 'bathroom'}
+    assert sum(len(s.room.floor) > 4 for s in scenes) >= 6
+    assert sum(len(s.second_tier) for s in scenes) >= 5
+    assert all(len(s.objects) >= 2 for s in scenes)
+
+
+@pytest.mark.parametrize('name', ROOMS)
+def test_rooms_stand_still_in_mujoco(name, tmp_path):
+    report = mujoco_rest(export_mjcf(room(name), tmp_path / 'room.xml'))
+    assert report.bodies == len(room(name).objects)
+    assert report.passed(), report.failures()
+
+
+@pytest.mark.parametrize('name', ROOMS)
+def test_rooms_stand_still_in_pybullet(name, tmp_path):
+    report = pybullet_rest(export_urdf(room(name), tmp_path / 'room.urdf'))
+    assert report.bodies == len(room(name).objects)
+    assert report.passed(), report.failures()
+
+
+def test_mjcf_compiles_to_the_scene(tmp_path):
+    scene = room('corpus-living-L')
+    path = export_mjcf(scene, tmp_path / 'room.xml')
+    model = mujoco.MjModel.from_xml_path(str(path))
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    assert model.nbody == 1 + len(scene.objects)
+    assert model.njnt == len(scene.objects)
+    assert all(t == mujoco.mjtJoint.mjJNT_FREE for t in model.jnt_type)
+    assert model.opt.gravity[2] == pytest.approx(-9.81)
+    walls = [g for g in range(model.ngeom) if model.geom(g).name.startswith('wall_')]
+    assert len(walls) == len(wall_boxes(scene.room))
+    for obj, body in zip(scene.objects, scene_bodies(scene), strict=True):
+        b = model.body(obj.id)
+        assert np.allclose(data.xpos[b.id], obj.position, atol=1e-6)
+        assert math.isclose(math.remainder(
+            2 * math.atan2(data.xquat[b.id][3], data.xquat[b.id][0]) - obj.yaw, 2 * math.pi),
+            0, abs_tol=1e-6)
+        assert b.mass[0] == pytest.approx(body.mass, rel=1e-6)
+        geoms = [g for g in range(model.ngeom) if model.geom_bodyid[g] == b.id]
+        collide = [g for g in geoms if model.geom_contype[g]]
+        visual = [g for g in geoms if not model.geom_contype[g]]
+        assert len(collide) == len(body.pieces) and len(visual) >= 1
+        assert all(model.geom_type[g] == mujoco.mjtGeom.mjGEOM_MESH for g in visual)
+
+
+def test_urdf_objects_load_at_their_poses_with_their_mass(tmp_path):
+    scene = room('corpus-office')
+    path = export_urdf(scene, tmp_path / 'room.urdf')
+    poses = json.loads(poses_path(path).read_text())
+    assert [e['id'] for e in poses['objects']] == [o.id for o in scene.objects]
+    client = pybullet.connect(pybullet.DIRECT)
+    try:
+        bodies = load_pybullet(path, client)
+        for obj, body in zip(scene.objects, scene_bodies(scene), strict=True):
+            pos, orn = _origin(pybullet, bodies[obj.id], client)
+            assert np.allclose(pos, obj.position, atol=1e-6)
+            yaw = pybullet.getEulerFromQuaternion(orn)[2]
+            assert math.isclose(math.remainder(yaw - obj.yaw, 2 * math.pi), 0, abs_tol=1e-6)
+            info = pybullet.getDynamicsInfo(bodies[obj.id], -1, physicsClientId=client)
+            assert info[0] == pytest.approx(body.mass, rel=1e-5)
+            assert np.allclose(sorted(info[2]), body.principal_inertia()[0], rtol=1e-4)
+    finally:
+        pybullet.disconnect(client)
+
+
+def test_fixed_furniture_is_welded_in_both_engines(tmp_path):
+    scene = room('corpus-bedroom')
+    xml = ET.parse(export_mjcf(scene, tmp_path / 'room.xml', fixed=True)).getroot()
+    assert xml.find('.//freejoint') is None
+    assert mujoco_rest(tmp_path / 'room.xml').bodies == 0
+    path = export_urdf(scene, tmp_path / 'room.urdf', fixed=True)
+    assert all(e['fixed'] for e in json.loads(poses_path(path).read_text())['objects'])
+    assert pybullet_rest(path).bodies == 0
+
+
+def _moved(scene, z: float):
+    out = scene.copy()
+    o = out.objects[0]
+    out.objects[0] = PlacedObject(o.id, o.category, o.model_id, (*o.position[:2], z), o.yaw,
+                                  o.size)
+    for child in out.children_of(o.id):       # what stood on it goes with it
+        child.position = (*child.position[:2], z + o.height)
+    return out
+
+
+def test_the_rest_test_fails_an_object_exported_in_the_air(tmp_path):
+    scene = _moved(room('corpus-bedroom'), 0.05)
+    mj = mujoco_rest(export_mjcf(scene, tmp_path / 'room.xml'))
+    pb = pybullet_rest(export_urdf(scene, tmp_path / 'room.urdf'))
+    for report in (mj, pb):
+        assert not report.passed()
+        assert any('moved' in f for f in report.failures())
+        assert report.displacement == pytest.approx(0.05, abs=0.005)
+
+
+def test_the_rest_test_fails_an_object_exported_into_the_floor(tmp_path):
+    scene = _moved(room('corpus-bedroom'), -0.02)
+    for report in (mujoco_rest(export_mjcf(scene, tmp_path / 'room.xml')),
+                   pybullet_rest(export_urdf(scene, tmp_path / 'room.urdf'))):
+        assert any('penetrated' in f for f in report.failures()), report
+
+
+def test_rest_report_names_each_failure():
+    r = RestReport('x', 2, 2.0, displacement=0.02, rotation=3.0, penetration=0.006,
+                   lowest=-0.01, moved={'a': 0.02, 'b': 0.0})
+    failures = r.failures()
+    assert failures == ['a moved 20.0 mm', 'an object turned 3.00 degrees',
+                        'a contact penetrated 6.0 mm', 'a body sank 10.0 mm below the floor']
+    assert r.passed(RestLimits(0.05, 5.0, 0.01, 0.02))
+
+
+def test_odd_rooms_export_in_every_format_and_still_rest(tmp_path):
+    from scene_synth_ros.export import FORMATS, write
+    turned = room('corpus-living-L').moved(0.52, (3.0, -7.0))      # 30 degrees, off origin
+    base = room('corpus-bedroom')
+    stranger = base.copy()                      # a category of someone else's data set
+    o = stranger.objects[0]
+    stranger.objects[0] = PlacedObject(o.id, 'grandfather clock', 'clock_01', o.position,
+                                       o.yaw, o.size)
+    for k, scene in enumerate((turned, stranger)):
+        for fmt, f in FORMATS.items():
+            assert write(scene, fmt, tmp_path / f'{k}' / f'room{f.suffix}').is_file()
+        assert mujoco_rest(tmp_path / f'{k}' / 'room.xml').passed()
+        assert pybullet_rest(tmp_path / f'{k}' / 'room.urdf').passed()
+
+
+def test_every_category_stands_alone_in_both_engines(tmp_path):
+    # One model of each category in its own cell: its pieces, mass and inertia stand it up.
+    from scene_synth_ros import catalog
+    from scene_synth_ros.categories import CATEGORIES
+    from scene_synth_ros.scene import Room, Scene
+    cells = 8
+    room = Room('living', ((0, 0), (3.0 * cells, 0), (3.0 * cells, 3.0 * cells),
+                           (0, 3.0 * cells)))
+    objects = [PlacedObject(f'o{k}', c, v.model_id, (1.5 + 3 * (k % cells), 1.5 + 3 * (k // cells),
+                                                      0.0), 0.4 * k, v.size)
+               for k, c in enumerate(CATEGORIES) for v in catalog.variants(c)[k % 3:k % 3 + 1]]
+    scene = Scene(room, objects)
+    for report in (mujoco_rest(export_mjcf(scene, tmp_path / 'all.xml')),
+                   pybullet_rest(export_urdf(scene, tmp_path / 'all.urdf'))):
+        assert report.bodies == len(CATEGORIES)
+        assert report.passed(), report.failures()
