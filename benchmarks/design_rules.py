@@ -2,6 +2,7 @@
 
     .venv/bin/python benchmarks/design_rules.py [-n 150] [--room-type all] [--workers 2]
                                                 [--weights-dir DIR] [--uniform-draws]
+                                                [--networks-alone]
 
 Corpus rooms are held-out rooms (seed ``corpus.HELDOUT_SEED``); synthesized rooms are the same
 empty shells furnished by the shipped weights (or those of ``--weights-dir``), room ``i`` with
@@ -27,12 +28,15 @@ TIGHT = ('wall_contact', 'floating', 'window', 'reachable')   # 3-point targets,
 _synth = None
 
 
-def _init_worker(weights, location_mode):
+def _init_worker(weights, location_mode, networks_alone):
     global _synth
     import torch
     torch.set_num_threads(1)
     from scene_synth_ros.synth import SynthConfig, Synthesizer
-    _synth = Synthesizer(weights, SynthConfig(location_mode=location_mode))
+    cfg = SynthConfig(location_mode=location_mode)
+    if networks_alone:
+        cfg.insertion_rules = ()
+    _synth = Synthesizer(weights, cfg)
 
 
 def _synthesize(job):
@@ -58,11 +62,14 @@ def main() -> int:
     ap.add_argument('--uniform-draws', action='store_true',
                     help='locations anywhere in the drawn pixel, not at the blob centre '
                          '(SynthConfig.location_mode off)')
+    ap.add_argument('--networks-alone', action='store_true',
+                    help='no design rules kept at insertion (SynthConfig.insertion_rules '
+                         'empty): what the networks give by themselves')
     args = ap.parse_args()
     room_types = ROOM_TYPES if args.room_type == 'all' else (args.room_type,)
     jobs = [(rt, i) for rt in room_types for i in range(args.n)]
     with process_pool(args.workers, _init_worker,
-                      (args.weights_dir, not args.uniform_draws)) as pool:
+                      (args.weights_dir, not args.uniform_draws, args.networks_alone)) as pool:
         synthesized = pool.map(_synthesize, jobs, chunksize=4)
     print(f'design rules kept: held-out corpus vs synthesized, {args.n} rooms per type '
           f'(held-out shells, synthesis seeds 0..{args.n - 1})')

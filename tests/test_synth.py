@@ -58,6 +58,34 @@ def test_rejection_rules(synth):
     assert not fits(box('table lamp', 2.9, 2.0, 0.3, 0.3, z=0.75, support='desk_0'), desk)
 
 
+def test_insertion_keeps_windows_and_storage_fronts_clear(synth, tiny_weights):
+    room = Room('bedroom', [(0, 0), (5, 0), (5, 4), (0, 4)], 2.6,
+                doors=(Opening('door', (1.0, 0.0), 0.9, 2.0),),
+                windows=(Opening('window', (2.5, 4.0), 1.2, 1.2, 0.9),))
+    loose = Synthesizer(tiny_weights, SynthConfig(insertion_rules=()))
+    ctx, loose_ctx = synth._context(room, 0), loose._context(room, 0)
+    empty = Scene(room, [])
+    # A 2 m wardrobe against the window wall, over the glass: refused; beside it, or a bed
+    # lower than the sill under the window: kept.
+    over = box('wardrobe', 2.5, 3.7, 1.2, 0.6, 2.0, yaw=-math.pi / 2)
+    assert not synth.fits(ctx, empty, over) and loose.fits(loose_ctx, empty, over)
+    assert synth.fits(ctx, empty, box('wardrobe', 0.8, 3.7, 1.2, 0.6, 2.0, yaw=-math.pi / 2))
+    assert synth.fits(ctx, empty, box('single bed', 2.5, 3.0, 1.0, 2.0, 0.5,
+                                      yaw=-math.pi / 2))
+    # A wardrobe at the left wall facing the room (its front at x = 0.6, y 1.2 .. 2.8): a
+    # chair 20 cm before its doors is refused, one 60 cm away is not, and a wardrobe put
+    # with its doors 20 cm from a chair already there is refused too.
+    wardrobe = box('wardrobe', 0.3, 2.0, 1.6, 0.6, 2.0, oid='wardrobe_0')
+    with_wardrobe = Scene(room, [wardrobe])
+    near = box('chair', 1.0, 2.0, 0.4, 0.4, 0.9)
+    assert not synth.fits(ctx, with_wardrobe, near)
+    assert loose.fits(loose_ctx, with_wardrobe, near)
+    assert synth.fits(ctx, with_wardrobe, box('chair', 1.4, 2.0, 0.4, 0.4, 0.9))
+    assert not synth.fits(ctx, Scene(room, [near]), wardrobe)
+    with pytest.raises(SynthesisError, match="cannot keep the design rule 'wall_contact'"):
+        Synthesizer(tiny_weights, SynthConfig(insertion_rules=('wall_contact',)))
+
+
 def test_rejection_keeps_the_robot_path(synth):
     room = Room('bedroom', [(0, 0), (5, 0), (5, 3), (0, 3)], 2.6,
                 doors=(Opening('door', (1.0, 0.0), 0.9, 2.0),

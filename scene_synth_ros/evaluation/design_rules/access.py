@@ -191,12 +191,22 @@ def _cases(scene: Scene, categories) -> tuple[list[PlacedObject], _Obstacles | N
     return cases, (_Obstacles(scene) if cases else None)
 
 
+def storage_verdicts(scene: Scene) -> dict[int, bool]:
+    """Whether each first-tier piece of storage (by its index in ``scene.first_tier``) keeps
+    ``storage_clearance``."""
+    first = scene.first_tier
+    cases = [k for k, o in enumerate(first) if o.category in STORAGE]
+    if not cases:
+        return {}
+    room = _Obstacles(scene)
+    return {k: _whole(room.clear_stretch(
+        first[k], 'front', STORAGE_CLEARANCE,
+        SEATS if first[k].category == 'dressing table' else ())) for k in cases}
+
+
 def storage_clearance(scene: Scene) -> Outcome:
-    cases, room = _cases(scene, STORAGE)
-    kept = sum(_whole(room.clear_stretch(
-        o, 'front', STORAGE_CLEARANCE, SEATS if o.category == 'dressing table' else ()))
-        for o in cases)
-    return kept, len(cases)
+    verdicts = storage_verdicts(scene)
+    return sum(verdicts.values()), len(verdicts)
 
 
 def _fixture_clear(room: _Obstacles, obj: PlacedObject) -> bool:

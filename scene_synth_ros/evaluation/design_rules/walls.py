@@ -242,13 +242,22 @@ def covered_width(window: Opening, wall: Wall, zone: Polygon,
     return union_length([along_wall(wall, p) for p in parts[shapely.area(parts) > 0]])
 
 
-def measure_windows_clear(scene: Scene) -> tuple[int, int]:
-    zones = window_zones(scene.room)
+def window_verdicts(scene: Scene) -> dict[int, bool]:
+    """Whether each window on a wall (by its index in ``room.windows``) keeps
+    ``windows_clear``."""
     first = scene.first_tier
-    fps = shapely.polygons(corner_array(first))
-    kept = sum(covered_width(w, wall, zone, first, fps) <= WINDOW_SHARE * w.width
-               for w, wall, zone in zones)
-    return kept, len(zones)
+    fps = shapely.polygons(corner_array(first)) if first else np.empty(0, dtype=object)
+    out = {}
+    for k, w in enumerate(scene.room.windows):
+        z = window_zone(scene.room, w)
+        if z is not None:
+            out[k] = covered_width(w, *z, first, fps) <= WINDOW_SHARE * w.width
+    return out
+
+
+def measure_windows_clear(scene: Scene) -> tuple[int, int]:
+    verdicts = window_verdicts(scene)
+    return sum(verdicts.values()), len(verdicts)
 
 
 # Corner pairs of ``corner_array`` making a side, as ``spatial.side`` names them.
