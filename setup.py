@@ -33,6 +33,9 @@ setup(
     # Python dependencies are pinned once, in requirements.txt; colcon users get the
     # ROS ones from package.xml.
     install_requires=['setuptools'],
+    # Batches on a Ray cluster (``scene-synth generate -n N --ray``); the version is pinned
+    # in requirements.txt, which ``make test`` installs.
+    extras_require={'ray': ['ray']},
     zip_safe=False,   # the weights are read as files
     maintainer='scene_synth_ros developers',
     maintainer_email='dev@scene-synth-ros.invalid',

@@ -7,6 +7,7 @@ from pathlib import Path
 
 from ..categories import ROOM_TYPES
 from ..corpus import HELDOUT_SEED
+from ..errors import quoted
 from .common import (
     WEIGHTS_DIR_HELP,
     UserError,
@@ -24,12 +25,15 @@ def add_parser(sub) -> None:
     c.add_argument('--room-type', default='bedroom', help=f'{"|".join(ROOM_TYPES)}')
     c.add_argument('--layout', help='a room layout JSON (default: a corpus-like empty room '
                    'drawn from the seed)')
-    _synthesis_options(c)
+    _synthesis_options(c, batch=True)
+    _batch_options(c, layouts=True)
     c.set_defaults(func=cmd_generate)
 
     c = sub.add_parser('complete', help='add the missing objects to a partial room')
-    c.add_argument('scene', help='a room layout or scene JSON with the objects to keep')
-    _synthesis_options(c)
+    c.add_argument('scene', help='a room layout or scene JSON with the objects to keep (a '
+                   'directory of them, or a JSON-lines file: a batch)')
+    _synthesis_options(c, batch=True)
+    _batch_options(c, layouts=False)
     c.set_defaults(func=cmd_complete)
 
     c = sub.add_parser('suggest', help='propose k distinct next objects for a room')
@@ -59,7 +63,7 @@ def add_parser(sub) -> None:
     c.set_defaults(func=cmd_demo)
 
 
-def _synthesis_options(c, out: bool = True) -> None:
+def _synthesis_options(c, out: bool = True, batch: bool = False) -> None:
     c.add_argument('--seed', type=int, default=0)
     c.add_argument('--temperature', type=float, help='location temperature (default 0.8)')
     c.add_argument('--max-objects', type=int, help='cap on objects in the room (default 30)')
@@ -67,13 +71,39 @@ def _synthesis_options(c, out: bool = True) -> None:
     c.add_argument('--device', choices=('cpu', 'cuda', 'auto'))
     robot_options(c)
     if out:
-        c.add_argument('--out', help='write the scene JSON here')
-    c.add_argument('--png', help='write a top-down picture here')
+        c.add_argument('--out', help='write the scene JSON here (a batch: its directory)')
+    if batch:
+        # A batch names its own thumbnails, so there --png is a switch.
+        c.add_argument('--png', nargs='?', const=True, metavar='PNG',
+                       help='write a top-down picture here (a batch: a thumbnail per room '
+                       'in DIR/png/, no file name)')
+    else:
+        c.add_argument('--png', help='write a top-down picture here')
 
 
-def _synthesizer(args):
-    """A Synthesizer with the options of ``args`` (gallery and demo have only some)."""
-    from ..synth import SynthConfig, Synthesizer
+def _batch_options(c, layouts: bool) -> None:
+    g = c.add_argument_group('batches', 'many rooms into one directory (--out DIR), resumable; '
+                             'see the README, "Thousands of rooms"')
+    g.add_argument('-n', type=int, help='rooms in the batch: room i is furnished with seed '
+                   '--seed + i' + (', in the corpus-like shell i of the seed (or in --layout, '
+                                   'or layout i of --layouts)' if layouts else
+                                   ' (with a directory or JSON-lines file: its first N rooms)'))
+    if layouts:
+        g.add_argument('--layouts', help="the user's own rooms: a directory of layouts (JSON "
+                       'or YAML, in name order) or a JSON-lines file (one layout a line)')
+    g.add_argument('--workers', type=int, help='worker processes, one torch thread each '
+                   '(default: one per core; with --ray, one per CPU of the cluster)')
+    g.add_argument('--ray', nargs='?', const='local', metavar='ADDRESS',
+                   help='furnish on Ray actors: with no ADDRESS a Ray started on this machine '
+                   "for the batch; else a cluster's address (host:port, or auto)")
+    g.add_argument('--export', metavar='FORMATS', help='write each room for simulators too: '
+                   'a comma list of formats (sdf, gltf, mjcf, urdf, usd)')
+    g.add_argument('-q', '--quiet', action='store_true', help='no progress bar')
+
+
+def _synth_config(args):
+    """The SynthConfig of the options of ``args`` (gallery and demo have only some)."""
+    from ..synth import SynthConfig
     cfg = SynthConfig()
     if getattr(args, 'temperature', None) is not None:
         if not args.temperature > 0:
@@ -87,7 +117,13 @@ def _synthesizer(args):
         cfg.device = args.device
     if hasattr(args, 'robot_radius'):
         cfg.robot = robot_from(args)
-    return Synthesizer(args.weights_dir, cfg)
+    return cfg
+
+
+def _synthesizer(args):
+    """A Synthesizer with the options of ``args``."""
+    from ..synth import Synthesizer
+    return Synthesizer(args.weights_dir, _synth_config(args))
 
 
 def _timing_line(result) -> str:
@@ -98,6 +134,9 @@ def _timing_line(result) -> str:
 
 def cmd_generate(args) -> int:
     from ..geometry import check_scene
+    if args.n is not None or args.layouts:
+        return _cmd_batch(args, 'generate')
+    _one_room_only(args)
     synth = _synthesizer(args)
     if args.layout:
         room = load_scene_file(args.layout).room
@@ -120,6 +159,10 @@ def cmd_generate(args) -> int:
 
 def cmd_complete(args) -> int:
     from ..geometry import check_scene
+    if args.n is not None or Path(args.scene).is_dir() or \
+            Path(args.scene).suffix.lower() == '.jsonl':
+        return _cmd_batch(args, 'complete')
+    _one_room_only(args)
     synth = _synthesizer(args)
     scene = load_scene_file(args.scene)
     result = synth.complete(scene, args.seed)
@@ -131,6 +174,44 @@ def cmd_complete(args) -> int:
     write_scene(result.scene, args.out, args.png,
                 f'{Path(args.scene).stem} completed (seed {args.seed})')
     return 0
+
+
+def _one_room_only(args) -> None:
+    """UserError for a batch's options given to the one-room command."""
+    for flag, value in (('--workers', args.workers), ('--ray', args.ray),
+                        ('--export', args.export)):
+        if value is not None:
+            raise UserError(f'{flag} is for batches: add -n N and --out DIR')
+    if args.png is True:
+        raise UserError('--png needs a file name for one room (a batch, -n N --out DIR, '
+                        'names its thumbnails)')
+
+
+def _cmd_batch(args, mode: str) -> int:
+    """``generate``/``complete`` over many rooms (``batch.run_batch``)."""
+    from ..batch import BatchConfig, Source, run_batch
+    if not args.out:
+        raise UserError('a batch needs --out DIR, the directory its rooms go to')
+    if args.png not in (None, True):
+        raise UserError(f'a batch names its thumbnails: give --png without a file name, not '
+                        f'--png {quoted(args.png)}')
+    if mode == 'complete':
+        source = Source.at(args.scene)
+    elif args.layouts and args.layout:
+        raise UserError('give --layout (one room, -n times) or --layouts (many), not both')
+    elif args.layouts or args.layout:
+        source = Source.at(args.layouts or args.layout)
+    else:
+        source = Source.shells(room_types(args.room_type))
+    exports = tuple(f.strip() for f in (args.export or '').split(',') if f.strip())
+    if args.export is not None and not exports:
+        raise UserError('--export needs at least one format, e.g. --export sdf,gltf')
+    summary = run_batch(BatchConfig(
+        out=args.out, source=source, mode=mode, n=args.n, seed=args.seed,
+        synthesis=_synth_config(args), weights_dir=args.weights_dir, workers=args.workers,
+        png=args.png is True, exports=exports, ray=args.ray, progress=not args.quiet))
+    print(summary.report())
+    return 1 if summary.failed else 0
 
 
 def cmd_suggest(args) -> int:

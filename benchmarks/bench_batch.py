@@ -1,0 +1,126 @@
+"""Batches of rooms (``scene_synth_ros.batch``): rooms per second with 1 and 2 worker
+processes, peak memory per worker, and a memory soak.
+
+For each ``--workers`` count, ``-n`` complete rooms of ``--room-type`` (default bedrooms,
+from corpus-like empty shells) are furnished into a fresh directory exactly as
+``scene-synth generate -n N --out DIR --workers W`` does, start-up included. With ``--soak
+N``, a batch of N rooms on ``--soak-workers`` workers, and each worker's resident memory after
+its 100th room and after its last (the issue's target: no growth beyond 50 MB after the first
+100 rooms); ``--soak-report DIR`` says the same of a soak directory kept with ``--keep``, also
+of one stopped before its end. The machine's load average is printed beside the figures: on a
+shared machine they are only as good as the cores were free.
+
+    .venv/bin/python benchmarks/bench_batch.py [-n 200] [--workers 1 2] [--room-type bedroom]
+        [--soak 10000] [--soak-workers 2] [--weights-dir DIR] [--keep DIR]
+    .venv/bin/python benchmarks/bench_batch.py --soak-report DIR/soak
+"""
+import argparse
+from collections import defaultdict
+import json
+import os
+from pathlib import Path
+import resource
+import sys
+import tempfile
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from scene_synth_ros.batch import BatchConfig, Manifest, Source, run_batch  # noqa: E402
+
+WARM = 100          # rooms after which a worker's memory should stay flat
+
+
+def _load() -> str:
+    one, five, _ = os.getloadavg()
+    return f'load average {one:.1f} (1 min), {five:.1f} (5 min) on {os.cpu_count()} cores'
+
+
+def _rows(out: Path) -> list[dict]:
+    return [json.loads(line) for line in (out / 'manifest.jsonl').read_text().splitlines()]
+
+
+def _batch(out: Path, room_type: str, n: int, workers: int, weights: str | None,
+           progress: bool = False):
+    cfg = BatchConfig(out=out, source=Source.shells([room_type]), n=n, workers=workers,
+                      weights_dir=weights, progress=progress)
+    return run_batch(cfg, echo=lambda s: None)
+
+
+def throughput(room_type: str, n: int, workers: int, weights: str | None, root: Path) -> None:
+    print(f'  before: {_load()}', flush=True)
+    s = _batch(root / f'speed_{workers}', room_type, n, workers, weights)
+    rows = _rows(root / f'speed_{workers}')
+    ok = [r for r in rows if r['status'] == 'ok']
+    secs = sorted(r['seconds'] for r in ok)
+    print(f'{workers} worker(s): {n} {room_type}s in {s.seconds:.1f} s = '
+          f'{s.rooms_per_second:.2f} rooms/s (start-up included); {len(ok)} ok, '
+          f'{s.objects_per_room:.2f} objects a room, {s.valid} valid, '
+          f'{s.robot_kept} robot promise kept; per room in a worker: median '
+          f'{secs[len(secs) // 2]:.3f} s, mean {sum(secs) / len(secs):.3f} s; peak resident '
+          f'memory per worker: {", ".join(f"{v:.0f}" for v in s.peak_mb.values())} MB',
+          flush=True)
+    print(f'  after: {_load()}', flush=True)
+
+
+def soak(room_type: str, n: int, workers: int, weights: str | None, root: Path) -> None:
+    print(f'soak: {n} {room_type}s on {workers} workers; {_load()}', flush=True)
+    s = _batch(root / 'soak', room_type, n, workers, weights, progress=True)
+    print(f'  {s.seconds:.0f} s, {s.rooms_per_second:.2f} rooms/s, {s.rooms_ok} ok, '
+          f'{s.rooms_failed} failed; {_load()}')
+    soak_report(root / 'soak')
+    driver = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(f'  peak resident memory of the driver: {driver:.0f} MB')
+
+
+def soak_report(out: Path) -> None:
+    """Each worker's resident memory over the rooms it made, from the manifest of the batch
+    in ``out`` (also of one that was stopped before its end)."""
+    by_worker: dict[str, list[dict]] = defaultdict(list)
+    for r in sorted(Manifest(out / 'manifest.jsonl').rows.values(), key=lambda r: r['index']):
+        by_worker[r['worker']].append(r)
+    rooms = sum(len(v) for v in by_worker.values())
+    print(f'  {rooms} rooms in {out}')
+    worst = 0.0
+    for worker, rows in by_worker.items():
+        rss = [r['rss_mb'] for r in rows]
+        if len(rss) <= WARM:
+            print(f'  worker {worker}: only {len(rss)} rooms')
+            continue
+        marks = [rss[k] for k in range(0, len(rss), max(1, len(rss) // 10))]
+        growth = max(rss[WARM:]) - rss[WARM - 1]
+        worst = max(worst, growth)
+        print(f'  worker {worker}: {len(rss)} rooms; resident MB after room 1: {rss[0]:.1f}, '
+              f'after room {WARM}: {rss[WARM - 1]:.1f}, after the last: {rss[-1]:.1f}, '
+              f'most after room {WARM}: {max(rss[WARM:]):.1f} (growth {growth:+.1f} MB); '
+              f'peak {rows[-1]["peak_mb"]:.1f} MB; every tenth: '
+              + ' '.join(f'{m:.0f}' for m in marks))
+    print(f'  largest growth after room {WARM}: {worst:+.1f} MB (target: under 50 MB)')
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument('-n', type=int, default=200, help='rooms per throughput run (0: none)')
+    ap.add_argument('--workers', type=int, nargs='+', default=[1, 2])
+    ap.add_argument('--room-type', default='bedroom')
+    ap.add_argument('--soak', type=int, default=0, help='rooms of the memory soak (0: none)')
+    ap.add_argument('--soak-workers', type=int, default=2)
+    ap.add_argument('--weights-dir', default=None)
+    ap.add_argument('--keep', help='write the batches here (default: a temporary directory)')
+    ap.add_argument('--soak-report', metavar='DIR', help='only report the soak batch in DIR '
+                    '(one that was stopped too), from its manifest')
+    args = ap.parse_args()
+    if args.soak_report:
+        soak_report(Path(args.soak_report))
+        return
+    with tempfile.TemporaryDirectory(prefix='bench-batch-') as tmp:
+        root = Path(args.keep or tmp)
+        if args.n:
+            for w in args.workers:
+                throughput(args.room_type, args.n, w, args.weights_dir, root)
+        if args.soak:
+            soak(args.room_type, args.soak, args.soak_workers, args.weights_dir, root)
+
+
+if __name__ == '__main__':
+    main()

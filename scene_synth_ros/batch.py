@@ -1,0 +1,730 @@
+"""Batches of furnished rooms: thousands of rooms on every core of one machine, or on a Ray
+cluster, written into one directory that a second run resumes.
+
+Room ``i`` of a batch (``i`` = 0 .. n-1) is furnished with the synthesis seed ``seed + i``,
+in the ``i``-th room of its source (``Source``; the manifest's ``layout`` in brackets):
+
+- shells (``generate -n``): the empty shell of corpus room (type, ``seed``, ``i``),
+  ``corpus.generate.empty_room``; several room types (``all``) are cycled, room ``i`` being
+  of the ``i % k``-th (``bedroom shell: corpus seed 0, room 42``);
+- one layout or partial room (``generate --layout F -n``, ``complete F -n``): that room every
+  time (``F``);
+- a directory (``--layouts DIR``, ``complete DIR``): its ``*.json``, ``*.yaml`` and ``*.yml``
+  files in name order (the file's name);
+- a JSON-lines file (``*.jsonl``): its non-blank lines (``rooms.jsonl:17``, the line).
+
+So room 0 of ``generate -n N --seed S`` is the room of ``generate --seed S``, and any room is
+made again alone from its scene file and seed (``generate --layout
+DIR/scenes/room_000042.json --seed 42``), to the last digit when torch has one thread there
+too (the one-room command uses every core, which changes the last digits of the networks'
+sums). ``generate`` furnishes from empty (objects in the input are dropped); ``complete``
+keeps them and adds the rest.
+
+The directory::
+
+    batch.json        what the rooms are: command, seed, source, synthesis options, weights.
+                      A later run into the directory must ask for the same rooms; -n, the
+                      workers, the thumbnails and the exports may change.
+    manifest.jsonl    one JSON row per room, appended as each room finishes (so a killed run
+                      loses no finished room), sorted by index when a run ends
+    summary.json      the counts of the manifest and the last run's speed and memory
+    scenes/room_000042.json
+    png/room_000042.png              (--png: a 240-pixel thumbnail)
+    <format>/room_000042.<ext>       (--export: the suffixes of ``export.FORMATS``)
+    <format>/meshes/                 the catalog models of that format's files, written once
+                                     and named relatively, so each format's folder moves whole
+
+A row: ``index``, ``room``, ``status`` (``ok`` or ``error``), ``seed``, ``layout``, then for
+a room furnished ``room_type``, ``area``, ``objects``, ``added``, ``stopped``, ``valid``
+(``geometry.check_scene``), ``robot_kept`` (the robot promise) and ``files``; for one that
+failed ``error``, the package's one-sentence reason. Every row has ``seconds`` and the
+``worker`` (host:pid) with its resident and peak memory (``rss_mb``, ``peak_mb``).
+
+Determinism: a room depends only on its index, the seed, its source, the synthesis options
+and the weights, never on which worker furnished it or when. Every worker has a Synthesizer
+of its own and one torch thread, and synthesis draws everything from the room's seed. Timings
+live in the manifest, not in the scene files, so the same batch made by 1 or 2 processes or
+by Ray actors gives byte-identical scene files.
+
+Resumption: a room is skipped when the manifest has an ``ok`` row for it and every file this
+run asks for (scene, thumbnail, exports) exists; a room's row is appended only after its
+files are in place. A room that failed is tried again.
+
+Workers: ``parallel.process_pool`` processes, or Ray actors (``ray``, an optional
+dependency), one room at a time each. Workers send back the bytes of a room's files and the
+driver alone writes them (atomically, ``files.write_atomic``), so the output directory need
+exist only where the command runs, also on a cluster.
+"""
+from __future__ import annotations
+
+from collections import deque
+from contextlib import closing
+from dataclasses import asdict, dataclass, field
+import json
+import os
+from pathlib import Path
+import signal
+import socket
+import sys
+import tempfile
+import time
+from typing import Callable, Iterator
+
+from .categories import resolve_room_type
+from .errors import SceneSynthError, quoted, sentence
+from .files import write_atomic
+from .limits import MAX_PAYLOAD_BYTES
+from .synth import SynthConfig
+
+LAYOUT_SUFFIXES = ('.json', '.yaml', '.yml')
+SCENES, THUMBNAILS = 'scenes', 'png'
+MESHES = 'meshes'                  # a format folder's shared models
+THUMBNAIL = {'figsize': (3.0, 3.0), 'dpi': 80, 'legend': False}   # 240 x 240 px
+# tqdm's bar with the rate always in rooms per second (its default turns slow rates over).
+PROGRESS = ('{desc}: {percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt} '
+            '[{elapsed}<{remaining}, {rate_noinv_fmt}{postfix}]')
+# Rooms queued at each Ray actor, so that it starts the next room while the driver is still
+# writing the last one's files.
+IN_FLIGHT = 2
+
+
+class BatchError(SceneSynthError):
+    """A batch that cannot start (bad options, an unusable directory), in one sentence."""
+
+
+def available_formats() -> list[str]:
+    """The export formats a batch can write (``export.FORMATS``)."""
+    from .export import FORMATS
+    return list(FORMATS)
+
+
+def room_name(index: int) -> str:
+    return f'room_{index:06d}'
+
+
+def output_files(name: str, png: bool, exports: tuple[str, ...]) -> list[str]:
+    """The files of room ``name`` that a run asks for, relative to the batch directory; the
+    scene last (see ``Worker.files``)."""
+    from .export import FORMATS
+    files = [f'{THUMBNAILS}/{name}.png'] if png else []
+    files += [f'{fmt}/{name}{FORMATS[fmt].suffix}' for fmt in exports]
+    return files + [f'{SCENES}/{name}.json']
+
+
+def _shared(rel: str) -> bool:
+    """Whether ``rel`` is one of a format folder's shared model files."""
+    parts = rel.split('/')
+    return len(parts) > 2 and parts[1] == MESHES
+
+
+# ---- sources ---------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class RoomJob:
+    """Everything a worker needs to furnish room ``index``: a shell to draw, or a document."""
+
+    index: int
+    seed: int
+    layout: str                     # where the room comes from, as the manifest names it
+    room_type: str | None = None    # a shell of this type (corpus seed ``shell_seed``)...
+    shell_seed: int = 0
+    data: bytes | None = None       # ...or a layout or scene, JSON or YAML
+    problem: str | None = None      # why the document could not be read
+
+    @property
+    def name(self) -> str:
+        return room_name(self.index)
+
+
+def _read_document(path: Path) -> tuple[bytes | None, str | None]:
+    # One byte past the limit is enough for the schema's reader to refuse it in one sentence.
+    try:
+        with open(path, 'rb') as f:
+            return f.read(MAX_PAYLOAD_BYTES + 1), None
+    except OSError as e:
+        return None, f'{path.name} cannot be read: {e.strerror or e}'
+
+
+def _jsonl_lines(path: Path) -> Iterator[tuple[int, bytes]]:
+    """(line number, text) of every non-blank line; a line past the payload limit is cut
+    there (the reader then refuses it) and the rest of it skipped."""
+    with open(path, 'rb') as f:
+        number = 0
+        while True:
+            line = f.readline(MAX_PAYLOAD_BYTES + 1)
+            if not line:
+                return
+            number += 1
+            if len(line) > MAX_PAYLOAD_BYTES and not line.endswith(b'\n'):
+                rest = line
+                while rest and not rest.endswith(b'\n'):
+                    rest = f.readline(MAX_PAYLOAD_BYTES)
+            if line.strip():
+                yield number, line
+
+
+@dataclass(frozen=True)
+class Source:
+    """Where a batch's rooms come from (see the module docstring)."""
+
+    kind: str                       # 'shells', 'file', 'directory' or 'jsonl'
+    room_types: tuple[str, ...] = ()
+    path: str = ''
+
+    @classmethod
+    def shells(cls, room_types) -> Source:
+        types = tuple(resolve_room_type(t) for t in room_types)
+        if not types:
+            raise BatchError('shells need at least one room type')
+        return cls('shells', types)
+
+    @classmethod
+    def at(cls, path: str | os.PathLike) -> Source:
+        """A directory of layouts, a JSON-lines file or one layout or scene file."""
+        p = Path(path)
+        if p.is_dir():
+            return cls('directory', path=str(p.resolve()))
+        if not p.is_file():
+            raise BatchError(f'{path}: no such file or directory')
+        return cls('jsonl' if p.suffix.lower() == '.jsonl' else 'file', path=str(p.resolve()))
+
+    @property
+    def finite(self) -> bool:
+        """Whether the source has a number of rooms of its own (else -n is needed)."""
+        return self.kind in ('directory', 'jsonl')
+
+    def identity(self) -> dict:
+        return ({'kind': self.kind, 'room_types': list(self.room_types)}
+                if self.kind == 'shells' else {'kind': self.kind, 'path': self.path})
+
+    def jobs(self, seed: int, n: int | None) -> list[RoomJob]:
+        """Rooms 0 .. n-1 (every room of a finite source when ``n`` is None); documents of a
+        directory are read later, by ``load``, for the rooms still to do."""
+        path = Path(self.path)
+        if self.kind == 'shells':
+            k = len(self.room_types)
+            return [RoomJob(i, seed + i, f'{self.room_types[i % k]} shell: corpus seed {seed}, '
+                            f'room {i}', room_type=self.room_types[i % k], shell_seed=seed)
+                    for i in range(n)]
+        if self.kind == 'file':
+            return [RoomJob(i, seed + i, str(path)) for i in range(n)]
+        if self.kind == 'directory':
+            try:
+                names = sorted(p.name for p in path.iterdir()
+                               if p.suffix.lower() in LAYOUT_SUFFIXES and p.is_file())
+            except OSError as e:
+                raise BatchError(f'{path}: cannot be listed: {e.strerror or e}') from None
+            if not names:
+                raise BatchError(f'{path} holds no room layouts (*.json, *.yaml, *.yml)')
+            return [RoomJob(i, seed + i, name) for i, name in enumerate(names[:n])]
+        jobs = []
+        try:
+            for i, (number, line) in enumerate(_jsonl_lines(path)):
+                if n is not None and i >= n:
+                    break
+                jobs.append(RoomJob(i, seed + i, f'{path.name}:{number}', data=line))
+        except OSError as e:
+            raise BatchError(f'{path}: cannot be read: {e.strerror or e}') from None
+        if not jobs:
+            raise BatchError(f'{path} holds no room layouts (one JSON layout a line)')
+        return jobs
+
+    def load(self, job: RoomJob) -> RoomJob:
+        """``job`` with its document read, or with why it could not be."""
+        if self.kind not in ('file', 'directory'):
+            return job
+        path = Path(self.path) if self.kind == 'file' else Path(self.path) / job.layout
+        data, problem = _read_document(path)
+        return RoomJob(job.index, job.seed, job.layout, data=data, problem=problem)
+
+
+def scene_from_document(data: bytes):
+    """A scene or room layout (JSON or YAML) as a validated Scene, as ``schema.load_scene``
+    reads a file."""
+    from .schema import parse_room_layout, parse_scene, read_payload
+    d = read_payload(data)
+    if isinstance(d, dict) and 'room' not in d:
+        return parse_room_layout(d)
+    return parse_scene(d)
+
+
+# ---- workers ---------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class WorkerSpec:
+    """What every worker is started with."""
+
+    mode: str                       # 'generate' or 'complete'
+    weights_dir: str | None
+    synthesis: SynthConfig
+    png: bool = False
+    exports: tuple[str, ...] = ()
+
+
+@dataclass
+class RoomResult:
+    row: dict
+    files: dict[str, bytes]         # relative path -> content, in the order to write them
+
+
+def _memory_mb() -> tuple[float | None, float | None]:
+    """(resident, peak resident) memory of this process in MB, where the platform says."""
+    try:
+        import resource
+        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024   # KB on Linux
+    except ImportError:                                                     # Windows
+        peak = None
+    try:
+        with open('/proc/self/statm') as f:
+            rss = int(f.read().split()[1]) * os.sysconf('SC_PAGE_SIZE') / 2**20
+    except (OSError, ValueError, IndexError):
+        rss = None
+    return rss, peak
+
+
+class Worker:
+    """Furnishes one room at a time with a Synthesizer of its own and one torch thread."""
+
+    def __init__(self, spec: WorkerSpec):
+        import torch
+
+        from .synth import Synthesizer
+        # One thread each: the workers are the parallelism, and threads fighting over the
+        # same cores are slower than one each.
+        torch.set_num_threads(1)
+        self.spec = spec
+        self.synth = Synthesizer(spec.weights_dir, spec.synthesis)
+        self.name = f'{socket.gethostname()}:{os.getpid()}'
+        self.shipped: set[str] = set()      # shared model files already sent to the driver
+
+    def furnish(self, job: RoomJob) -> RoomResult:
+        """Room ``job`` and its files, or a row saying in one sentence why it failed."""
+        t0 = time.perf_counter()
+        row: dict = {'index': job.index, 'room': job.name, 'seed': job.seed,
+                     'layout': job.layout}
+        files: dict[str, bytes] = {}
+        try:
+            row.update(status='ok', **self._furnish(job, files))
+        except SceneSynthError as e:
+            row.update(status='error', error=str(e))
+            files = {}
+        except Exception as e:   # noqa: BLE001 - one broken room must not end a batch of thousands
+            row.update(status='error', error=sentence(f'internal error: {type(e).__name__}: {e}'))
+            files = {}
+        rss, peak = _memory_mb()
+        row.update(seconds=round(time.perf_counter() - t0, 4), worker=self.name,
+                   rss_mb=None if rss is None else round(rss, 1),
+                   peak_mb=None if peak is None else round(peak, 1))
+        return RoomResult(row, files)
+
+    def _furnish(self, job: RoomJob, files: dict[str, bytes]) -> dict:
+        from .geometry import check_scene
+        from .scene import Scene
+        if job.problem:
+            raise BatchError(job.problem)
+        if job.room_type is not None:
+            from .corpus.generate import empty_room
+            scene = Scene(empty_room(job.room_type, job.shell_seed, job.index), [])
+        else:
+            scene = scene_from_document(job.data)
+        furnish = self.synth.generate if self.spec.mode == 'generate' else self.synth.complete
+        result = furnish(scene, job.seed)
+        files.update(self.files(job.name, result.scene))
+        report = check_scene(result.scene)
+        out = {'room_type': result.scene.room.room_type,
+               'area': round(result.scene.room.area, 2), 'objects': len(result.scene.objects),
+               'added': len(result.added), 'stopped': result.stopped, 'valid': report.ok,
+               'robot_kept': result.robot.kept}
+        if not report.ok:
+            out['problems'] = report.summary()
+        out['files'] = output_files(job.name, self.spec.png, self.spec.exports)
+        return out
+
+    def files(self, name: str, scene) -> dict[str, bytes]:
+        """The room's files: shared models first, then what refers to them, the scene last,
+        so that a reader who finds a file finds what it names."""
+        from . import export
+        from .schema import dump_scene
+        shared, own = {}, {}
+        with tempfile.TemporaryDirectory(prefix='scene-synth-batch-') as tmp:
+            root = Path(tmp)
+            if self.spec.png:
+                from .plot import save_png
+                (root / THUMBNAILS).mkdir()
+                save_png(scene, root / THUMBNAILS / f'{name}.png', title=name, **THUMBNAIL)
+            for fmt in self.spec.exports:
+                export.write(scene, fmt, root / fmt / f'{name}{export.FORMATS[fmt].suffix}',
+                             root / fmt / MESHES)
+            primary = set(output_files(name, self.spec.png, self.spec.exports))
+            for p in sorted(root.rglob('*')):
+                rel = p.relative_to(root).as_posix()
+                if not p.is_file() or rel in self.shipped:
+                    continue
+                if _shared(rel):
+                    shared[rel] = p.read_bytes()
+                    self.shipped.add(rel)
+                elif rel not in primary:
+                    own[rel] = p.read_bytes()
+            for rel in sorted(primary - {f'{SCENES}/{name}.json'}):
+                own[rel] = (root / rel).read_bytes()
+        own[f'{SCENES}/{name}.json'] = (dump_scene(scene) + '\n').encode('utf-8')
+        return {**shared, **own}
+
+
+_WORKER: Worker | None = None
+
+
+def _start_pool_worker(spec: WorkerSpec) -> None:
+    global _WORKER
+    # Ctrl-C goes to the whole process group; the driver alone handles it (it stops the pool).
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _WORKER = Worker(spec)
+
+
+def _pool_furnish(job: RoomJob) -> RoomResult:
+    return _WORKER.furnish(job)
+
+
+class RayWorker:
+    """A Ray actor's state: one ``Worker``."""
+
+    def __init__(self, spec: WorkerSpec):
+        self.worker = Worker(spec)
+
+    def furnish(self, job: RoomJob) -> RoomResult:
+        return self.worker.furnish(job)
+
+
+def _pool_results(spec: WorkerSpec, jobs: list[RoomJob], workers: int
+                  ) -> Iterator[RoomResult]:
+    from .parallel import process_pool
+    with process_pool(workers, _start_pool_worker, (spec,)) as pool:
+        # A worker's results arrive in the order it made them, so models it sends once are
+        # written before a later room that names them.
+        yield from pool.imap_unordered(_pool_furnish, jobs, chunksize=1)
+
+
+def _ray_results(spec: WorkerSpec, jobs: list[RoomJob], workers: int | None, address: str
+                 ) -> Iterator[RoomResult]:
+    """The rooms furnished by Ray actors, each actor's in the order it made them (see
+    ``_pool_results``). ``address``: 'local' starts a Ray of ``workers`` CPUs on this machine
+    for the batch (and stops it after); anything else is given to ``ray.init`` (a cluster's
+    address, or 'auto'). A driver already connected to Ray uses that connection."""
+    try:
+        import ray
+    except ImportError:
+        raise BatchError('--ray needs the ray package (pip install ray, pinned in '
+                         'requirements.txt)') from None
+    started = False
+    if not ray.is_initialized():
+        kwargs = {'address': address, 'include_dashboard': False, 'logging_level': 'WARNING'}
+        if address == 'local':
+            kwargs['num_cpus'] = workers or _cores()
+        try:
+            ray.init(**kwargs)
+        except (ConnectionError, ValueError, RuntimeError, TimeoutError) as e:
+            raise BatchError(f'cannot start or reach Ray at {quoted(address)}: {e}') from None
+        started = True
+    actors = []
+    try:
+        n = workers or max(1, int(ray.cluster_resources().get('CPU', 1)))
+        actor_class = ray.remote(num_cpus=1)(RayWorker)
+        actors = [actor_class.remote(spec) for _ in range(min(n, len(jobs)))]
+        todo = iter(jobs)
+        queued: list[deque] = [deque() for _ in actors]
+
+        def feed(k: int) -> None:
+            job = next(todo, None)
+            if job is not None:
+                queued[k].append(actors[k].furnish.remote(job))
+
+        for k in range(len(actors)):
+            for _ in range(IN_FLIGHT):
+                feed(k)
+        while any(queued):
+            heads = {q[0]: k for k, q in enumerate(queued) if q}
+            ready, _ = ray.wait(list(heads), num_returns=1)
+            k = heads[ready[0]]
+            queued[k].popleft()
+            feed(k)
+            try:
+                yield ray.get(ready[0])
+            except ray.exceptions.RayError as e:
+                raise BatchError(f'a Ray worker failed ({sentence(e, 200)}); run the same '
+                                 f'command again to resume') from None
+    finally:
+        for a in actors:
+            ray.kill(a)
+        if started:
+            ray.shutdown()
+
+
+# ---- the batch -------------------------------------------------------------------------------
+@dataclass
+class BatchConfig:
+    """One batch (see the module docstring)."""
+
+    out: str | os.PathLike
+    source: Source
+    mode: str = 'generate'          # 'generate' or 'complete'
+    n: int | None = None            # rooms; None: every room of a finite source
+    seed: int = 0
+    synthesis: SynthConfig = field(default_factory=SynthConfig)
+    weights_dir: str | None = None
+    workers: int | None = None      # None: one per core (with Ray: one per CPU of the cluster)
+    png: bool = False
+    exports: tuple[str, ...] = ()
+    ray: str | None = None          # None: worker processes; 'local' or an address: Ray
+    progress: bool = True           # a progress bar on stderr
+
+
+@dataclass
+class BatchSummary:
+    """What a run did (``this run``) and what the directory holds (every row)."""
+
+    out: str
+    requested: int
+    furnished: int                  # this run
+    failed: int                     # this run
+    skipped: int                    # already there
+    seconds: float                  # this run's wall time
+    workers: int
+    backend: str                    # 'processes' or 'ray'
+    peak_mb: dict[str, float]       # peak resident memory of each of this run's workers
+    rooms_ok: int = 0               # in the whole manifest
+    rooms_failed: int = 0
+    objects_per_room: float = 0.0
+    valid: int = 0
+    robot_kept: int = 0
+
+    @property
+    def rooms_per_second(self) -> float:
+        done = self.furnished + self.failed
+        return done / self.seconds if self.seconds > 0 else 0.0
+
+    def to_dict(self) -> dict:
+        return {**asdict(self), 'rooms_per_second': round(self.rooms_per_second, 3)}
+
+    def report(self) -> str:
+        """A few lines for people."""
+        lines = [f'{self.out}: {self.requested} rooms asked for; {self.furnished} furnished '
+                 f'and {self.failed} failed in {self.seconds:.1f} s '
+                 f'({self.rooms_per_second:.2f} rooms/s on {self.workers} '
+                 f'{"Ray worker" if self.backend == "ray" else "worker process"}'
+                 f'{"" if self.workers == 1 else "es" if self.backend != "ray" else "s"}), '
+                 f'{self.skipped} already there']
+        if self.rooms_ok:
+            lines.append(f'the directory holds {self.rooms_ok} rooms, '
+                         f'{self.objects_per_room:.2f} objects each; physically valid: '
+                         f'{self.valid}, robot promise kept: {self.robot_kept}')
+        if self.peak_mb:
+            lines.append(f'peak memory per worker: {max(self.peak_mb.values()):.0f} MB at most')
+        if self.rooms_failed:
+            lines.append(f'{self.rooms_failed} rooms failed: their rows in manifest.jsonl say '
+                         'why')
+        return '\n'.join(lines)
+
+
+class Manifest:
+    """``manifest.jsonl``: rows appended as rooms finish, the last row of an index counting."""
+
+    def __init__(self, path: Path):
+        self.path = path
+        self.rows: dict[int, dict] = {}
+        if path.is_file():
+            with open(path, 'rb') as f:
+                for line in f:
+                    try:
+                        row = json.loads(line)
+                        self.rows[int(row['index'])] = row
+                    except (ValueError, KeyError, TypeError):
+                        continue      # the torn last line of a killed run
+        self._file = None
+
+    def append(self, row: dict) -> None:
+        if self._file is None:
+            self._file = open(self.path, 'ab')
+            # A killed run may have left half a line; the next row starts on a line of its own.
+            if self._file.tell() and not self._ends_with_newline():
+                self._file.write(b'\n')
+        self._file.write(json.dumps(row, ensure_ascii=False).encode('utf-8') + b'\n')
+        self._file.flush()
+        self.rows[row['index']] = row
+
+    def _ends_with_newline(self) -> bool:
+        with open(self.path, 'rb') as f:
+            f.seek(-1, os.SEEK_END)
+            return f.read(1) == b'\n'
+
+    def close(self) -> None:
+        if self._file is not None:
+            self._file.close()
+            self._file = None
+
+    def compact(self) -> None:
+        """The file as one row per room, by index."""
+        self.close()
+        text = ''.join(json.dumps(self.rows[i], ensure_ascii=False) + '\n'
+                       for i in sorted(self.rows))
+        write_atomic(self.path, text)
+
+
+def _identity(cfg: BatchConfig, weights: Path) -> dict:
+    """What determines the rooms (batch.json): not how many, by whom, nor what else is
+    written."""
+    return json.loads(json.dumps({
+        'command': cfg.mode, 'seed': cfg.seed, 'source': cfg.source.identity(),
+        'synthesis': asdict(cfg.synthesis), 'weights': str(weights)}))
+
+
+def _difference(old, new, where: str = '') -> str | None:
+    if isinstance(old, dict) and isinstance(new, dict):
+        for k in sorted(set(old) | set(new), key=str):
+            d = _difference(old.get(k), new.get(k), f'{where}.{k}' if where else str(k))
+            if d:
+                return d
+        return None
+    return None if old == new else f'{where} {quoted(old, 60)} there, {quoted(new, 60)} now'
+
+
+def _check_directory(out: Path, identity: dict) -> None:
+    """Create ``out`` and its batch.json, or check that the batch there is this one."""
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:
+        raise BatchError(f'{out} is a file, not a directory for the batch') from None
+    except OSError as e:
+        raise BatchError(f'{out} cannot be created: {e.strerror or e}') from None
+    if not out.is_dir():
+        raise BatchError(f'{out} is a file, not a directory for the batch')
+    path = out / 'batch.json'
+    if path.is_file():
+        try:
+            old = json.loads(path.read_text(encoding='utf-8'))
+        except (OSError, ValueError) as e:
+            raise BatchError(f'{path} is not a batch description ({sentence(e, 120)}): '
+                             f'furnish into another directory') from None
+        diff = _difference(old, identity)
+        if diff:
+            raise BatchError(f'{out} holds a batch of other rooms ({diff}): ask for the same '
+                             f'rooms to resume it, or furnish into another directory')
+        return
+    try:
+        write_atomic(path, json.dumps(identity, indent=2) + '\n')
+    except OSError as e:
+        raise BatchError(f'{out} is not writable: {e.strerror or e}') from None
+
+
+def _check_weights(cfg: BatchConfig) -> Path:
+    """The weights directory, its bundles for the shells' room types loaded once here so that
+    a missing or broken file is one sentence before any worker starts."""
+    from dataclasses import replace
+
+    from .synth import Synthesizer
+    Synthesizer(cfg.weights_dir, cfg.synthesis)        # a device that is not there
+    synth = Synthesizer(cfg.weights_dir, replace(cfg.synthesis, device='cpu'))
+    if not synth.weights_dir.is_dir():
+        raise BatchError(f'{synth.weights_dir}: no such weights directory')
+    for rt in cfg.source.room_types:
+        synth.bundle(rt)
+    return synth.weights_dir.resolve()
+
+
+def _cores() -> int:
+    """The cores this process may run on."""
+    if hasattr(os, 'sched_getaffinity'):
+        return len(os.sched_getaffinity(0))
+    return os.cpu_count() or 1
+
+
+def _done(row: dict | None, out: Path, files: list[str]) -> bool:
+    return bool(row) and row.get('status') == 'ok' and all((out / f).is_file() for f in files)
+
+
+def _write(out: Path, result: RoomResult) -> None:
+    for rel, data in result.files.items():
+        path = out / rel
+        if _shared(rel) and path.is_file() and path.read_bytes() == data:
+            continue
+        path.parent.mkdir(parents=True, exist_ok=True)
+        write_atomic(path, data)
+
+
+def run_batch(cfg: BatchConfig, echo: Callable[[str], None] = print) -> BatchSummary:
+    """Furnish the batch's rooms that are not there yet into ``cfg.out``; BatchError (or
+    another SceneSynthError) before anything is furnished when it cannot start."""
+    if cfg.mode not in ('generate', 'complete'):
+        raise BatchError(f"mode must be 'generate' or 'complete', got {quoted(cfg.mode)}")
+    if cfg.n is not None and cfg.n < 1:
+        raise BatchError(f'-n must be at least 1, got {cfg.n}')
+    if cfg.n is None and not cfg.source.finite:
+        raise BatchError('how many rooms? give -n N')
+    if cfg.workers is not None and cfg.workers < 1:
+        raise BatchError(f'--workers must be at least 1, got {cfg.workers}')
+    if cfg.mode == 'complete' and cfg.source.kind == 'shells':
+        raise BatchError('complete needs partial rooms: a file, a directory or a JSON-lines '
+                         'file of them')
+    from .export import parse_formats
+    exports = parse_formats(','.join(cfg.exports))
+    out = Path(cfg.out)
+    weights = _check_weights(cfg)
+    jobs = cfg.source.jobs(cfg.seed, cfg.n)
+    if cfg.n is not None and len(jobs) < cfg.n:
+        echo(f'{cfg.source.path} holds {len(jobs)} rooms: furnishing those, not {cfg.n}')
+    _check_directory(out, _identity(cfg, weights))
+    manifest = Manifest(out / 'manifest.jsonl')
+    pending = [j for j in jobs
+               if not _done(manifest.rows.get(j.index), out,
+                            output_files(j.name, cfg.png, exports))]
+    spec = WorkerSpec(cfg.mode, cfg.weights_dir, cfg.synthesis, cfg.png, exports)
+    workers = cfg.workers or (None if cfg.ray else _cores())
+    skipped = len(jobs) - len(pending)
+    if skipped:
+        echo(f'{out}: {skipped} of {len(jobs)} rooms already there, {len(pending)} to furnish')
+    t0 = time.perf_counter()
+    furnished = failed = 0
+    peaks: dict[str, float] = {}
+    try:
+        if pending:
+            pending = [cfg.source.load(j) for j in pending]
+            if cfg.ray:
+                results = _ray_results(spec, pending, workers, cfg.ray)
+            else:
+                results = _pool_results(spec, pending, min(workers, len(pending)))
+            from tqdm import tqdm
+            # closing: an error here stops the workers now, not when the traceback goes.
+            with closing(results), tqdm(
+                    total=len(pending), unit=' rooms', desc='furnishing', file=sys.stderr,
+                    disable=not cfg.progress, mininterval=1.0, smoothing=0.1,
+                    bar_format=PROGRESS) as bar:
+                for result in results:
+                    row = result.row
+                    _write(out, result)
+                    manifest.append(row)
+                    if row['status'] == 'ok':
+                        furnished += 1
+                    else:
+                        failed += 1
+                        bar.set_postfix(failed=failed, refresh=False)
+                    peaks[row['worker']] = max(peaks.get(row['worker'], 0.0),
+                                               row['peak_mb'] or 0.0)
+                    bar.update()
+    finally:
+        manifest.compact()
+        seconds = time.perf_counter() - t0
+        summary = _summarize(cfg, manifest, len(jobs), furnished, failed, skipped, seconds,
+                             len(peaks) or (workers or 0), peaks)
+        write_atomic(out / 'summary.json', json.dumps(summary.to_dict(), indent=2) + '\n')
+    return summary
+
+
+def _summarize(cfg: BatchConfig, manifest: Manifest, requested: int, furnished: int,
+               failed: int, skipped: int, seconds: float, workers: int,
+               peaks: dict[str, float]) -> BatchSummary:
+    ok = [r for r in manifest.rows.values() if r.get('status') == 'ok']
+    return BatchSummary(
+        out=str(cfg.out), requested=requested, furnished=furnished, failed=failed,
+        skipped=skipped, seconds=round(seconds, 3), workers=workers,
+        backend='ray' if cfg.ray else 'processes', peak_mb=peaks,
+        rooms_ok=len(ok), rooms_failed=len(manifest.rows) - len(ok),
+        objects_per_room=round(sum(r.get('objects', 0) for r in ok) / len(ok), 3) if ok else 0.0,
+        valid=sum(bool(r.get('valid')) for r in ok),
+        robot_kept=sum(bool(r.get('robot_kept')) for r in ok))

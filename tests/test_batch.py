@@ -1,0 +1,252 @@
+"""Batches of rooms (``scene_synth_ros.batch``) through ``scene-synth generate -n`` /
+``--layouts`` and ``complete DIR``: the same rooms whatever the number of workers, resumption
+after a killed run, bad layouts as manifest rows, bad options as one sentence, thumbnails and
+exports, and the Ray path on a local Ray."""
+import json
+import os
+from pathlib import Path
+import shutil
+import time
+
+from conftest import EXAMPLES
+import pytest
+import torch
+
+from scene_synth_ros.batch import available_formats
+from scene_synth_ros.schema import load_scene
+
+# What differs between two runs of the same room: when and where it was made.
+RUN_FIELDS = ('seconds', 'worker', 'rss_mb', 'peak_mb')
+
+
+def rows(out: Path) -> list[dict]:
+    return [json.loads(line) for line in (out / 'manifest.jsonl').read_text().splitlines()]
+
+
+def stable(row: dict) -> dict:
+    return {k: v for k, v in row.items() if k not in RUN_FIELDS}
+
+
+def scenes(out: Path) -> dict[str, bytes]:
+    return {p.name: p.read_bytes() for p in sorted((out / 'scenes').iterdir())}
+
+
+def batch(tiny_weights, *args):
+    return ('generate', '--room-type', 'bathroom', '--weights-dir', tiny_weights, '--seed', 5,
+            '-q', *args)
+
+
+def test_same_rooms_on_one_and_two_workers_and_a_killed_run_resumes(cli, tiny_weights,
+                                                                    tmp_path):
+    a, b = tmp_path / 'a', tmp_path / 'b'
+    cli(*batch(tiny_weights, '-n', 6, '--workers', 1, '--out', a))
+    proc = cli(*batch(tiny_weights, '-n', 6, '--workers', 2, '--out', b))
+    assert '6 furnished and 0 failed' in proc.stdout and 'on 2 worker processes' in proc.stdout
+    assert scenes(a) == scenes(b) and len(scenes(a)) == 6
+    assert [stable(r) for r in rows(a)] == [stable(r) for r in rows(b)]
+    made = rows(a)
+    assert [r['index'] for r in made] == list(range(6))
+    assert [r['seed'] for r in made] == list(range(5, 11))
+    assert made[2]['layout'] == 'bathroom shell: corpus seed 5, room 2'
+    for r in made:
+        scene = load_scene(a / 'scenes' / f'{r["room"]}.json')
+        assert r['status'] == 'ok' and r['valid'] and r['objects'] == len(scene)
+        assert r['seconds'] > 0 and r['peak_mb'] > 0
+    assert sum(r['objects'] for r in made) > 0
+    summary = json.loads((b / 'summary.json').read_text())
+    assert summary['rooms_ok'] == 6 and summary['workers'] == 2
+
+    # Room 0 is the room of the one-room command (with one torch thread, as a worker has).
+    threads = torch.get_num_threads()
+    torch.set_num_threads(1)
+    try:
+        cli('generate', '--room-type', 'bathroom', '--weights-dir', tiny_weights, '--seed', 5,
+            '--out', tmp_path / 'one.json')
+    finally:
+        torch.set_num_threads(threads)
+    assert (tmp_path / 'one.json').read_bytes() == scenes(a)['room_000000.json']
+
+    # A run killed while writing room 4's row: its scene is there, its row half-written;
+    # room 5 was never finished.
+    lines = (a / 'manifest.jsonl').read_text().splitlines(keepends=True)
+    (a / 'manifest.jsonl').write_text(''.join(lines[:4]) + lines[4][:30])
+    (a / 'scenes' / 'room_000005.json').unlink()
+    proc = cli(*batch(tiny_weights, '-n', 8, '--workers', 2, '--out', a))
+    assert '4 of 8 rooms already there, 4 to furnish' in proc.stdout
+    assert '4 furnished and 0 failed' in proc.stdout
+    resumed = rows(a)
+    assert [r['index'] for r in resumed] == list(range(8))
+    assert [stable(r) for r in resumed[:6]] == [stable(r) for r in made]
+    assert {k: v for k, v in scenes(a).items() if k < 'room_000006'} == scenes(b)
+    proc = cli(*batch(tiny_weights, '-n', 8, '--out', a))
+    assert '0 furnished and 0 failed' in proc.stdout and '8 already there' in proc.stdout
+
+
+def test_bad_layouts_are_manifest_rows_and_the_batch_goes_on(cli, tiny_weights, tmp_path):
+    layouts = tmp_path / 'layouts'
+    layouts.mkdir()
+    shutil.copy(EXAMPLES / 'bedroom_layout.json', layouts / 'a_example.json')
+    (layouts / 'b_broken.json').write_text('{"room_type": "bedroom", "floor": [')
+    (layouts / 'c_kitchen.yaml').write_text('room_type: kitchen\nfloor: [[0, 0], [3, 0], '
+                                            '[3, 3], [0, 3]]\n')
+    (layouts / 'd_bath.yml').write_text('room_type: bathroom\nfloor: [[0, 0], [3, 0], '
+                                        '[3, 2.5], [0, 2.5]]\n')
+    (layouts / 'notes.txt').write_text('not a layout')
+    out = tmp_path / 'out'
+    proc = cli('generate', '--layouts', layouts, '--out', out, '--weights-dir', tiny_weights,
+               '--workers', 2, '-q', ok=False)
+    assert proc.returncode == 1 and '2 furnished and 2 failed' in proc.stdout
+    got = {r['layout']: r for r in rows(out)}
+    assert list(got) == ['a_example.json', 'b_broken.json', 'c_kitchen.yaml', 'd_bath.yml']
+    assert got['a_example.json']['status'] == got['d_bath.yml']['status'] == 'ok'
+    assert 'neither JSON' in got['b_broken.json']['error']
+    assert 'kitchen' in got['c_kitchen.yaml']['error']
+    for r in got.values():
+        if r['status'] == 'error':
+            assert 'Traceback' not in r['error'] and '\n' not in r['error']
+            assert not (out / 'scenes' / f'{r["room"]}.json').exists()
+    assert load_scene(out / 'scenes' / 'room_000000.json').room == \
+        load_scene(EXAMPLES / 'bedroom_layout.json').room
+
+    # A JSON-lines file: blank lines skipped, rooms named by line; an office has no tiny
+    # weights, which fails that room alone.
+    good = json.dumps(json.loads((EXAMPLES / 'bedroom_layout.json').read_text()))
+    office = json.dumps({'room_type': 'office', 'floor': [[0, 0], [4, 0], [4, 3], [0, 3]]})
+    (tmp_path / 'rooms.jsonl').write_text(f'{good}\n\n[1, 2]\n{office}\n{good}\n')
+    out = tmp_path / 'lines'
+    proc = cli('generate', '--layouts', tmp_path / 'rooms.jsonl', '--out', out, '--seed', 2,
+               '--weights-dir', tiny_weights, '--workers', 1, '-q', ok=False)
+    got = rows(out)
+    assert [r['layout'] for r in got] == ['rooms.jsonl:1', 'rooms.jsonl:3', 'rooms.jsonl:4',
+                                          'rooms.jsonl:5']
+    assert [r['status'] for r in got] == ['ok', 'error', 'error', 'ok']
+    assert 'office.pt: no such weights file' in got[2]['error']
+    assert [r['seed'] for r in got] == [2, 3, 4, 5]
+
+
+def test_complete_a_directory_and_one_room_many_times(cli, tiny_weights, tmp_path):
+    partials = tmp_path / 'partials'
+    partials.mkdir()
+    shutil.copy(EXAMPLES / 'partial_bedroom.json', partials / 'p.json')
+    partial = load_scene(EXAMPLES / 'partial_bedroom.json')
+    out = tmp_path / 'done'
+    cli('complete', partials, '--out', out, '--weights-dir', tiny_weights, '--workers', 1, '-q')
+    done = load_scene(out / 'scenes' / 'room_000000.json')
+    assert [o.to_dict() for o in done.objects[:len(partial)]] == \
+        [o.to_dict() for o in partial.objects]
+    assert rows(out)[0]['added'] == len(done) - len(partial)
+    # One partial room, three completions with seeds 0, 1, 2.
+    out = tmp_path / 'three'
+    cli('complete', EXAMPLES / 'partial_bedroom.json', '-n', 3, '--out', out,
+        '--weights-dir', tiny_weights, '--workers', 2, '-q')
+    assert [r['seed'] for r in rows(out)] == [0, 1, 2]
+    assert len(set(scenes(out).values())) == 3
+
+
+def test_thumbnails_and_exports_per_room(cli, tiny_weights, tmp_path):
+    out = tmp_path / 'out'
+    cli(*batch(tiny_weights, '-n', 2, '--workers', 1, '--out', out))
+    first = scenes(out)
+    formats = available_formats()
+    assert {'sdf', 'gltf', 'mjcf', 'urdf', 'usd'} <= set(formats)
+    # Asking for more files redoes the rooms that lack them: the same rooms.
+    proc = cli(*batch(tiny_weights, '-n', 2, '--workers', 2, '--out', out, '--png',
+                      '--export', ','.join(formats)))
+    assert '2 furnished' in proc.stdout and scenes(out) == first
+    assert (out / 'png' / 'room_000001.png').read_bytes()[:4] == b'\x89PNG'
+    assert (out / 'gltf' / 'room_000000.glb').read_bytes()[:4] == b'glTF'
+    world = (out / 'sdf' / 'room_000000.sdf').read_text()
+    uris = [u.split('</uri>')[0] for u in world.split('<uri>')[1:]]
+    meshes = [u for u in uris if u.endswith('.obj')]
+    assert meshes and all(not u.startswith(('/', 'file:')) for u in meshes)
+    assert all((out / 'sdf' / u).is_file() for u in meshes)
+    made = rows(out)[0]['files']
+    assert made[-1] == 'scenes/room_000000.json' and all((out / f).is_file() for f in made)
+    assert len(made) == len(formats) + 2
+
+
+def test_batch_bad_input_is_one_sentence(cli, tiny_weights, tmp_path):
+    a_file = tmp_path / 'file.txt'
+    a_file.write_text('x')
+    empty = tmp_path / 'empty'
+    empty.mkdir()
+    d = tmp_path / 'd'
+    for args, words in [
+            (('-n', 0, '--out', d), 'at least 1'),
+            (('-n', -3, '--out', d), 'at least 1'),
+            (('-n', 2, '--workers', 0, '--out', d), '--workers must be at least 1'),
+            (('-n', 2), 'needs --out'),
+            (('--layouts', tmp_path / 'missing', '--out', d), 'no such file or directory'),
+            (('--layouts', empty, '--out', d), 'holds no room layouts'),
+            (('-n', 2, '--out', a_file), 'is a file'),
+            (('-n', 2, '--out', a_file / 'sub'), 'cannot be created'),
+            (('-n', 2, '--out', d, '--png', 'x.png'), 'names its thumbnails'),
+            (('-n', 2, '--out', d, '--export', 'obj'), "'obj' is not one of"),
+            (('-n', 2, '--out', d, '--export', ','), 'at least one format'),
+            (('--workers', 2), 'is for batches'),
+            (('--png',), 'needs a file name'),
+            (('-n', 2, '--out', d, '--room-type', 'kitchen'), 'unknown room type')]:
+        proc = cli('generate', '--weights-dir', tiny_weights, *args, ok=False)
+        assert proc.returncode == 2, (args, proc.stderr)
+        assert words in proc.stderr and 'Traceback' not in proc.stderr, (args, proc.stderr)
+        assert len(proc.stderr.strip().splitlines()) == 1, (args, proc.stderr)
+        assert not d.exists(), args
+    proc = cli('complete', tmp_path / 'missing.jsonl', '--out', d, ok=False)
+    assert proc.returncode == 2 and 'no such file or directory' in proc.stderr
+    proc = cli('generate', '-n', 1, '--out', d, '--weights-dir', empty, ok=False)
+    assert proc.returncode == 2 and 'no such weights file' in proc.stderr and not d.exists()
+    # The directory of another batch is not resumed with other rooms.
+    cli(*batch(tiny_weights, '-n', 1, '--workers', 1, '--out', d))
+    proc = cli(*batch(tiny_weights, '-n', 1, '--out', d, '--temperature', 0.5), ok=False)
+    assert proc.returncode == 2 and 'holds a batch of other rooms' in proc.stderr
+    assert 'location_temperature 0.8 there, 0.5 now' in proc.stderr
+
+
+def _descendants() -> set[int]:
+    """Live (not zombie) processes below this one."""
+    parent: dict[int, int] = {}
+    for p in Path('/proc').iterdir():
+        if not p.name.isdigit():
+            continue
+        try:
+            fields = (p / 'stat').read_text().rsplit(')', 1)[1].split()
+        except OSError:
+            continue
+        if fields[0] != 'Z':
+            parent[int(p.name)] = int(fields[1])
+    found, frontier = set(), {os.getpid()}
+    while frontier:
+        frontier = {pid for pid, pp in parent.items() if pp in frontier} - found
+        found |= frontier
+    return found
+
+
+def _gone(before: set[int], seconds: float = 20.0) -> set[int]:
+    deadline = time.monotonic() + seconds
+    while (left := _descendants() - before) and time.monotonic() < deadline:
+        time.sleep(0.2)
+    return left
+
+
+@pytest.mark.slow
+def test_ray_gives_the_rooms_of_the_process_pool(cli, tiny_weights, tmp_path):
+    ray = pytest.importorskip('ray')
+    assert not ray.is_initialized()
+    before = _descendants()
+    pool, on_ray = tmp_path / 'pool', tmp_path / 'ray'
+    cli(*batch(tiny_weights, '-n', 5, '--workers', 2, '--out', pool))
+    # With no address the batch starts a Ray of --workers CPUs for itself, and stops it.
+    proc = cli(*batch(tiny_weights, '-n', 3, '--workers', 2, '--ray', '--out', on_ray))
+    assert 'on 2 Ray workers' in proc.stdout and not ray.is_initialized()
+    assert not _gone(before), 'Ray left processes behind'
+    # A driver already on a Ray uses it (here a local one of 1 CPU: one actor) and resumes.
+    ray.init(num_cpus=1, include_dashboard=False, logging_level='WARNING')
+    try:
+        proc = cli(*batch(tiny_weights, '-n', 5, '--ray', '--out', on_ray))
+        assert '3 already there' in proc.stdout and 'on 1 Ray worker)' in proc.stdout
+        assert ray.is_initialized()
+    finally:
+        ray.shutdown()
+    assert not _gone(before), 'Ray left processes behind'
+    assert scenes(on_ray) == scenes(pool)
+    assert [stable(r) for r in rows(on_ray)] == [stable(r) for r in rows(pool)]
