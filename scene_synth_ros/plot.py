@@ -238,9 +238,12 @@ def save_reach_png(scene: Scene, robot, path: str | os.PathLike, dpi: int = DEFA
     found = report(scene, robot)
     fig = Figure(figsize=DEFAULT_FIGSIZE, dpi=dpi)
     ax = fig.add_axes((0.08, 0.08, 0.6, 0.84))
-    draw_scene(scene, ax=ax, title=f'{100 * found.reachable_floor:.0f} % of the free floor '
-               f'reachable for a {2 * robot.radius:g} m robot'
-               + ('' if found.kept else ': promise broken'))
+    if found.reachable_floor is None:
+        title = 'no doors: the robot comes in nowhere'
+    else:
+        title = (f'{100 * found.reachable_floor:.0f} % of the free floor reachable for a '
+                 f'{2 * robot.radius:g} m robot' + ('' if found.kept else ': promise broken'))
+    draw_scene(scene, ax=ax, title=title)
     pieces = [np.asarray(p.exterior.coords) for p in get_parts(driven_floor(scene, robot))
               if p.geom_type == 'Polygon']
     ax.add_collection(PolyCollection(pieces, facecolors=REACHED_COLOR, edgecolors='none',

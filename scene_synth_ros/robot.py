@@ -141,7 +141,8 @@ class RobotReport:
     doors: int
     doors_connected: bool
     unreachable: tuple[str, ...]          # ids of first-tier objects the robot cannot reach
-    reachable_floor: float                # share of the free floor it drives over from a door
+    reachable_floor: float | None         # share of the free floor it drives over from a door
+                                          # (None without doors: it comes in nowhere)
 
     @property
     def kept(self) -> bool:
@@ -174,7 +175,8 @@ class RobotReport:
         return {**self.robot.to_dict(), 'promise_kept': self.kept,
                 'doors_connected': self.doors_connected,
                 'unreachable': list(self.unreachable),
-                'reachable_floor': round(self.reachable_floor, 4)}
+                'reachable_floor': (None if self.reachable_floor is None
+                                    else round(self.reachable_floor, 4))}
 
 
 def driven_floor(scene: Scene, robot: Robot, now: RobotState | None = None):
@@ -193,8 +195,8 @@ def report(scene: Scene, robot: Robot) -> RobotReport:
     floor = scene.room.polygon
     if objects:
         floor = floor.difference(shapely.union_all([o.footprint() for o in objects]))
-    share = 1.0
+    share = None
     if scene.room.doors:
         share = driven_floor(scene, robot, now).area / floor.area if floor.area > 0 else 0.0
-    return RobotReport(robot, len(scene.room.doors), now.doors_connected, unreached,
-                       min(share, 1.0))
+        share = min(share, 1.0)
+    return RobotReport(robot, len(scene.room.doors), now.doors_connected, unreached, share)

@@ -89,6 +89,7 @@ def test_the_report_measures_the_free_floor_reached():
     no_doors = Room('bedroom', ROOM.floor, 2.6)
     assert robot.report(Scene(no_doors, [WARDROBE]), Robot()).kept
     assert 'no doors' in robot.report(Scene(no_doors, []), Robot()).sentence()
+    assert robot.report(Scene(no_doors, []), Robot()).to_dict()['reachable_floor'] is None
 
 
 @pytest.mark.parametrize('kwargs, words', [
@@ -193,6 +194,9 @@ def test_the_reach_command_reports_draws_and_refuses_a_robot_that_cannot_be(cli,
                                    'wardrobe' in run.stdout
     run = cli('reach', tmp_path / 'open.json', '--robot-radius', '0.3', ok=False)
     assert run.returncode == 1
+    save_scene(Scene(Room('bedroom', ROOM.floor, 2.6), [WARDROBE]), tmp_path / 'shut.json')
+    run = cli('reach', tmp_path / 'shut.json', '--png', tmp_path / 'shut.png')
+    assert 'no doors' in run.stdout and (tmp_path / 'shut.png').exists()
     run = cli('reach', tmp_path / 'open.json', '--robot-radius', '0.01', ok=False)
     assert run.returncode == 2 and '--robot-radius must be between 0.05 and 0.5 m' in run.stderr
     assert len(run.stderr.strip().splitlines()) == 1
