@@ -123,12 +123,18 @@ def door_parts(room: Room, free, robot_width: float = ROBOT_WIDTH):
     return parts, owners
 
 
+def owners_connected(owners) -> bool:
+    """Whether the robot stands inside every door (``door_parts``'s owners) and all of them
+    lie in one piece of free space."""
+    return None not in owners and len(set(owners)) == 1
+
+
 def doors_connected(scene: Scene, robot_width: float = ROBOT_WIDTH) -> bool:
     """Whether the robot can stand inside every door and drive between all of them."""
     if not scene.room.doors:
         return True
     _, owners = door_parts(scene.room, free_space(scene, robot_width), robot_width)
-    return None not in owners and len(set(owners)) == 1
+    return owners_connected(owners)
 
 
 @dataclass

@@ -30,7 +30,7 @@ import shapely
 from shapely.geometry import Polygon
 from shapely.prepared import prep
 
-from .geometry import door_parts, free_space
+from .geometry import door_parts, free_space, owners_connected
 from .scene import PlacedObject, Scene, box_corners
 
 # What is used at its front: one must stand before it (open doors and drawers, sit on a WC,
@@ -108,7 +108,7 @@ def state(scene: Scene, robot: Robot) -> RobotState:
         return RobotState(True, frozenset(range(len(objects))), shapely.Polygon())
     free = free_space(scene, robot.width)
     parts, owners = door_parts(scene.room, free, robot.width)
-    connected = None not in owners and len(set(owners)) == 1
+    connected = owners_connected(owners)
     space = shapely.union_all([parts[k] for k in set(owners) if k is not None])
     fast = prep(space)
     reached = frozenset(k for k, o in enumerate(objects)
@@ -125,12 +125,6 @@ def keeps(before: RobotState, after: Scene, robot: Robot) -> bool:
         return False
     n = len(after.first_tier) - 1
     return before.reached | {n} <= now.reached
-
-
-def unreachable(scene: Scene, robot: Robot) -> list[PlacedObject]:
-    """First-tier objects the robot cannot reach from a door (none without doors)."""
-    reached = state(scene, robot).reached
-    return [o for k, o in enumerate(scene.first_tier) if k not in reached]
 
 
 @dataclass(frozen=True)

@@ -29,7 +29,7 @@ from .export import UnknownFormat, parse_formats
 from .files import write_atomic
 from .markers import MARKER_STYLES
 from .networks.config import resolve_device
-from .robot import CLEARANCE_RANGE, RADIUS_RANGE, REACH_RANGE, Robot
+from .robot import CLEARANCE_RANGE, RADIUS_RANGE, REACH_RANGE, Robot, RobotReport
 from .scene import PlacedObject, Scene
 from .schema import dump_scene, parse_room_layout
 from .synth import MODULES, SynthConfig, SynthesisCancelled, Synthesizer, check_room_fits
@@ -185,6 +185,7 @@ class Served:
     stopped: str = ''
     timings: dict[str, float] = field(default_factory=dict)
     json: str = ''                       # the scene as published on ~/scene
+    robot: RobotReport | None = None     # the robot promise, when synthesis measured it
 
 
 @dataclass
@@ -457,7 +458,7 @@ class SceneServer:
             job.message = str(e)
             return
         served = Served(result.scene, job.source or job.kind, seed, result.added,
-                        result.seconds, result.stopped, result.timings)
+                        result.seconds, result.stopped, result.timings, robot=result.robot)
         if self._commit(job, served):
             job.ok = True
             job.message = _json({'seed': seed, 'objects': len(result.scene),
@@ -496,7 +497,9 @@ class SceneServer:
 
     def _commit(self, job: _Job, served: Served) -> bool:
         """Make ``served`` the current room and publish it, unless a newer layout came."""
-        promise = robot.report(served.scene, robot_of(self.config))
+        # Synthesis measured the promise for the robot it furnished for; other rooms (reset,
+        # one more object, a layout published as given) are measured here.
+        promise = served.robot or robot.report(served.scene, robot_of(self.config))
         served.scene.meta['robot'] = promise.to_dict()
         served.json = dump_scene(served.scene)   # never publish what the schema would refuse
         with self._lock:

@@ -203,7 +203,8 @@ def _cmd_batch(args, mode: str) -> int:
         source = Source.at(args.layouts or args.layout)
     else:
         source = Source.shells(room_types(args.room_type))
-    exports = tuple(f.strip() for f in (args.export or '').split(',') if f.strip())
+    from ..export import parse_formats
+    exports = parse_formats(args.export) if args.export is not None else ()
     if args.export is not None and not exports:
         raise UserError('--export needs at least one format, e.g. --export sdf,gltf')
     summary = run_batch(BatchConfig(

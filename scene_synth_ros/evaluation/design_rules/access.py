@@ -46,7 +46,7 @@ front_reachable
     operated at the front (``OPERATED_FRONT``: storage, nightstand, TV stand, desk, bathroom
     fixtures, piano, fireplace, whiteboard, water machine), anywhere around its footprint
     for the others (beds, seats, tables, lamps: used from a side, or moved to be used).
-    This is ``robot.unreachable`` for that robot (``RULE_ROBOT``): where its centre can be
+    This is ``robot.state`` for that robot (``RULE_ROBOT``): where its centre can be
     is ``geometry.free_space``, computed once per room, and it can drive to the pieces of it
     that hold a door's ``geometry.door_entry_point``. Reaching a front corner from the side
     does not count: a wardrobe behind a bed with a 0.3 m gap is not reached.
