@@ -3,7 +3,8 @@
 Objects are inserted one at a time, each in the paper's steps. Next Object Category: the
 category module draws the next category, or STOP. Object Location: the location module gives
 a distribution over the room for it, masked to the floor (or, for a second-tier category, to
-the surfaces observed to support it) and tempered, and locations are drawn from it, each
+the surfaces observed to support it; for a piece of a group kept at insertion, to where a
+partner could have it: ``groups.partner_zone``) and tempered, and locations are drawn from it, each
 moved to the centre of the blob it fell in (``SynthConfig.location_mode``) and, in bundles
 with offsets, by the offset predicted there. Object
 Orientation: at each location the orientation module draws a facing, snapped to the room's
@@ -12,9 +13,11 @@ footprint. Object Insertion: the catalog model nearest that footprint is placed,
 models that co-occur in the training rooms with those already there. A placement is rejected
 if it collides with first-tier furniture, leaves the floor, enters a door's clear zone,
 breaks the robot promise (``robot``: the configured robot must still drive between the doors
-and reach every object it reached, and the new one), or (second tier) stands less than 70 %
-on its parent or overlaps its neighbours there; then the next model is tried, then the next
-location, and if nothing fits the category is drawn again without the failed ones. An empty
+and reach every object it reached, and the new one), breaks a design rule kept at insertion
+(``SynthConfig.insertion_rules``: a case that kept it, or the new piece itself), or (second
+tier) stands less than 70 % on its parent or overlaps its neighbours there; then the next
+model is tried, then the next location, and if nothing fits the category is drawn again
+without the failed ones. An empty
 room in which the robot cannot drive between the doors is refused in one sentence.
 
 Three modes: ``generate`` (an empty room), ``complete`` (a partial room: keeps what is
@@ -39,7 +42,7 @@ import torch
 from . import catalog, robot
 from .categories import CATEGORIES, RoomTypeSpec, resolve_room_type, room_spec
 from .errors import SceneSynthError, UnknownCategory, quoted
-from .evaluation.design_rules import access, walls
+from .evaluation.design_rules import access, groups, walls
 from .geometry import (
     FLOOR_TOLERANCE,
     MIN_SUPPORT,
@@ -58,9 +61,18 @@ from .robot import Robot, RobotReport, RobotState
 from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
 
 # Design rules insertion can keep: each gives, for a scene, whether each of its cases (a
-# window by its index, a piece of storage by its index among the first tier) keeps the rule.
+# window by its index, a piece of storage by its index among the first tier, a piece of a
+# group by its id) keeps the rule. The group rules also narrow where such a piece's location
+# is drawn (``groups.partner_zone``).
 INSERTION_RULES = {'windows_clear': walls.window_verdicts,
-                   'storage_clearance': access.storage_verdicts}
+                   'storage_clearance': access.storage_verdicts,
+                   'wall_contact': walls.wall_contact_verdicts,
+                   'fixture_clearance': access.fixture_verdicts,
+                   'bath_in_corner': groups.corner_verdicts,
+                   'chair_at_table': groups.chair_verdicts,
+                   'nightstand_by_bed': groups.nightstand_verdicts,
+                   'bidet_by_toilet': groups.bidet_verdicts,
+                   'coffee_table_has_seating': groups.seating_verdicts}
 
 # What ``Synthesis.timings`` counts seconds of (see the module docstring).
 MODULES = ('render', 'category', 'location', 'orientation', 'dimensions', 'insertion')
@@ -160,8 +172,13 @@ class SynthConfig:
                                         # pipeline")
     robot: Robot = Robot()              # the robot every room is furnished for (``robot``)
     # Design rules that insertion keeps (``INSERTION_RULES``; a departure from the paper):
-    # the networks leave windows and storage fronts less clear than the training rooms do.
-    insertion_rules: tuple[str, ...] = ('windows_clear', 'storage_clearance')
+    # the networks leave windows and the fronts of storage and fixtures less clear, wall
+    # furniture off its wall, baths out of corners and pieces of a group further from their
+    # partners than the training rooms do.
+    insertion_rules: tuple[str, ...] = ('windows_clear', 'storage_clearance', 'wall_contact',
+                                        'fixture_clearance', 'bath_in_corner',
+                                        'chair_at_table', 'nightstand_by_bed',
+                                        'bidet_by_toilet', 'coffee_table_has_seating')
     device: str = 'cpu'
 
 
@@ -188,6 +205,7 @@ class _Context:
     grid: Frame                   # the location module's output grid
     floor_mask: np.ndarray        # (L, L) bool: pixel centres on the floor
     door_mask: np.ndarray         # (L, L) bool: pixel centres in a door's clear zone
+    centres: np.ndarray           # (L * L, 2): the world (x, y) of each grid pixel's centre
     floor: Polygon                # the floor grown by the floor tolerance
     zones: list[Polygon]          # the doors' clear zones
     rng: np.random.Generator
@@ -267,6 +285,7 @@ class Synthesizer:
         return _Context(
             room=room, spec=spec, bundle=bundle, frame=frame, grid=grid,
             floor_mask=floor_mask.reshape(n, n), door_mask=door_mask.reshape(n, n),
+            centres=centres,
             floor=room.polygon.buffer(FLOOR_TOLERANCE, join_style='mitre'), zones=zones,
             rng=np.random.default_rng(seed),
             gen=torch.Generator().manual_seed(int(seed) & 0x7FFF_FFFF_FFFF_FFFF))
@@ -433,7 +452,8 @@ class Synthesizer:
         category = ctx.spec.names[c]
         location_logits, offsets = location
         with ctx.timed('location'):
-            p = location_distribution(location_logits, c, self._mask(ctx, category, small),
+            p = location_distribution(location_logits, c,
+                                      self._mask(ctx, scene, category, small),
                                       cfg.location_temperature)
         if p is None:
             return None
@@ -453,12 +473,22 @@ class Synthesizer:
                         return obj
         return None
 
-    def _mask(self, ctx: _Context, category: str, small: np.ndarray) -> np.ndarray:
+    def _mask(self, ctx: _Context, scene: Scene, category: str, small: np.ndarray
+              ) -> np.ndarray:
         """Where the centre of a new ``category`` object may go on the location grid."""
         spec = ctx.spec
         if CATEGORIES[category].tier == 'first':
             # A centre inside other furniture or a door's clear zone is always rejected.
-            return ctx.floor_mask & ~ctx.door_mask & (small[OBJECT] < 0.5)
+            mask = ctx.floor_mask & ~ctx.door_mask & (small[OBJECT] < 0.5)
+            # A piece of a group goes only where a partner could have it, for the group
+            # rules insertion keeps (a departure from the paper, as the rules are): the
+            # location module spreads such pieces over the room.
+            for rule in self.config.insertion_rules:
+                zone = groups.partner_zone(scene, rule, category)
+                if zone is not None:
+                    mask &= shapely.contains_xy(zone, ctx.centres[:, 0],
+                                                ctx.centres[:, 1]).reshape(mask.shape)
+            return mask
         mask = np.zeros_like(ctx.floor_mask)
         for parent in spec.supports(category):
             mask |= small[FIRST_CATEGORY + spec.index(parent)] > 0.5

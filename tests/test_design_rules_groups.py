@@ -3,6 +3,7 @@ import math
 
 import numpy as np
 import pytest
+import shapely
 from shapely.geometry import LineString
 
 from scene_synth_ros.evaluation.design_rules import groups
@@ -237,3 +238,51 @@ def test_run_within_is_the_segment_inside_the_mitre_grown_footprint():
     # a segment along a side, in line with an edge: counted in full
     obj = PlacedObject('a', 'shower', 'shower_00', (0.5, 0.5, 0.0), 0.0, (1.0, 1.0, 2.0))
     assert groups.run_within(obj, (-1.0, -0.1), (3.0, -0.1), 0.1) == pytest.approx(1.2)
+
+
+@pytest.mark.parametrize('room_type', ['bedroom', 'living', 'office', 'bathroom'])
+def test_partner_zone_holds_every_piece_that_keeps_its_group_rule(room_type):
+    """Synthesis draws a group piece's location only inside ``partner_zone``: in corpus rooms,
+    every piece that keeps its rule has its centre in the zone computed from the rest of the
+    room, and the zone is a part of the room, not all of it."""
+    from scene_synth_ros.corpus.generate import generate_room
+    verdicts = {'chair_at_table': groups.chair_verdicts,
+                'nightstand_by_bed': groups.nightstand_verdicts,
+                'bidet_by_toilet': groups.bidet_verdicts,
+                'coffee_table_has_seating': groups.coffee_table_verdicts}
+    inside = cases = 0
+    area = []
+    for i in range(80):
+        scene = generate_room(room_type, 7, i)
+        for rule, verdict in verdicts.items():
+            for oid, ok in verdict(scene).items():
+                piece = scene.get(oid)
+                rest = Scene(scene.room, [o for o in scene.objects if o.id != oid])
+                zone = groups.partner_zone(rest, rule, piece.category)
+                assert zone is not None, (rule, piece.category)
+                if ok:
+                    cases += 1
+                    inside += zone.covers(shapely.Point(piece.position[:2]))
+                    area.append(zone.area / scene.room.area)
+    assert cases >= 20 and inside == cases
+    assert np.median(area) < 0.5
+    # A category no group rule asks about, or a stand outside a bedroom, has no zone.
+    empty = Scene(room(room_type))
+    assert groups.partner_zone(empty, 'chair_at_table', 'wardrobe') is None
+    assert (groups.partner_zone(empty, 'nightstand_by_bed', 'stand') is None) == (
+        room_type != 'bedroom')
+
+
+def test_a_coffee_table_may_wait_for_its_seats_which_then_go_by_it():
+    r = room('bedroom', 5.0, 5.0)
+    table = put('coffee table', 2.5, 2.5, 0)
+    rule = 'coffee_table_has_seating'
+    assert groups.partner_zone(Scene(r), rule, 'coffee table') is None
+    assert groups.partner_zone(Scene(r), rule, 'armchair') is None
+    ring = groups.partner_zone(Scene(r, [table]), rule, 'armchair')
+    assert ring.covers(shapely.Point(2.5, 1.4)) and not ring.covers(shapely.Point(0.5, 0.5))
+    # Once a seat serves the table, the next seat goes anywhere again.
+    seat = put('armchair', 2.5, 1.4, 90)
+    assert groups.coffee_table_verdicts(Scene(r, [table, seat])) == {table.id: True}
+    assert groups.partner_zone(Scene(r, [table, seat]), rule, 'sofa chair') is None
+    assert groups.seating_verdicts(Scene(r, [table])) == {}

@@ -195,13 +195,19 @@ def test_quick_report_of_one_room_type_is_written_with_finite_numbers(cli, tmp_p
                     'Speed', 'Physical plausibility', 'Generalisation', 'Component metrics',
                     'Design rules', 'Gallery'):
         assert heading in index
-    for name in ('categories', 'similarity', 'gallery', 'rules_synthesized'):
+    for name in ('categories', 'similarity', 'gallery'):
         png = out / f'{name}_bathroom.png'
         assert png.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n' and f'({png.name})' in index
     # corpus bathrooms keep every design rule, so there is no worst offender to draw
     assert not (out / 'rules_corpus_bathroom.png').exists()
     assert 'bathroom corpus: no room breaks any rule.' in index
     saved = json.loads((out / 'results.json').read_text())
+    # synthesized ones get a picture exactly when one of them breaks a rule somewhere
+    broken = any(d['synthesized'][0] < d['synthesized'][1]
+                 for d in saved['room_types']['bathroom']['design_rules'].values())
+    png = out / 'rules_synthesized_bathroom.png'
+    assert png.exists() == broken == ('(rules_synthesized_bathroom.png)' in index)
+    assert broken != ('bathroom synthesized: no room breaks any rule.' in index)
     assert finite_numbers(saved) == [] and finite_numbers(results) == []
     r = saved['room_types']['bathroom']
     assert set(r['classifier']) == {'synthesized', 'perturbed_0', 'perturbed_1',

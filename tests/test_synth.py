@@ -31,7 +31,9 @@ ROOM = Room('bedroom', [(0, 0), (4, 0), (4, 3), (0, 3)], 2.6,
 
 
 # ---- rejection rules ---------------------------------------------------------------------------
-def test_rejection_rules(synth):
+def test_rejection_rules(tiny_weights):
+    # The geometric rules alone: the design rules kept at insertion have tests of their own.
+    synth = Synthesizer(tiny_weights, SynthConfig(insertion_rules=()))
     ctx = synth._context(ROOM, 0)
     desk = box('desk', 3.0, 2.0, 1.2, 0.6, 0.75, oid='desk_0')
     scene = Scene(ROOM, [desk])
@@ -72,21 +74,62 @@ def test_insertion_keeps_windows_and_storage_fronts_clear(synth, tiny_weights):
     assert synth.fits(ctx, empty, box('wardrobe', 0.8, 3.7, 1.2, 0.6, 2.0, yaw=-math.pi / 2))
     assert synth.fits(ctx, empty, box('single bed', 2.5, 3.0, 1.0, 2.0, 0.5,
                                       yaw=-math.pi / 2))
-    # A wardrobe at the left wall facing the room (its front at x = 0.6, y 1.2 .. 2.8): a
-    # chair 20 cm before its doors is refused, one 60 cm away is not, and a wardrobe put
-    # with its doors 20 cm from a chair already there is refused too.
+    # A wardrobe at the left wall facing the room (its front at x = 0.6, y 1.2 .. 2.8): an
+    # ottoman 20 cm before its doors is refused, one 60 cm away is not, and a wardrobe put
+    # with its doors 20 cm from an ottoman already there is refused too.
     wardrobe = box('wardrobe', 0.3, 2.0, 1.6, 0.6, 2.0, oid='wardrobe_0')
     with_wardrobe = Scene(room, [wardrobe])
-    near = box('chair', 1.0, 2.0, 0.4, 0.4, 0.9)
+    near = box('ottoman', 1.0, 2.0, 0.4, 0.4, 0.45)
     assert not synth.fits(ctx, with_wardrobe, near)
     assert loose.fits(loose_ctx, with_wardrobe, near)
-    assert synth.fits(ctx, with_wardrobe, box('chair', 1.4, 2.0, 0.4, 0.4, 0.9))
+    assert synth.fits(ctx, with_wardrobe, box('ottoman', 1.4, 2.0, 0.4, 0.4, 0.45))
     assert not synth.fits(ctx, Scene(room, [near]), wardrobe)
-    with pytest.raises(SynthesisError, match="cannot keep the design rule 'wall_contact'"):
-        Synthesizer(tiny_weights, SynthConfig(insertion_rules=('wall_contact',)))
+    with pytest.raises(SynthesisError, match="cannot keep the design rule 'chairs_square'"):
+        Synthesizer(tiny_weights, SynthConfig(insertion_rules=('chairs_square',)))
 
 
-def test_rejection_keeps_the_robot_path(synth):
+def test_insertion_keeps_group_pieces_by_their_partners(synth, tiny_weights):
+    loose = Synthesizer(tiny_weights, SynthConfig(insertion_rules=()))
+    room = Room('bedroom', [(0, 0), (5, 0), (5, 4), (0, 4)], 2.6,
+                doors=(Opening('door', (4.5, 0.0), 0.8, 2.0),))
+
+    def kept(objects, new):
+        scene = Scene(room, objects)
+        strict = synth.fits(synth._context(room, 0), scene, new)
+        assert loose.fits(loose._context(room, 0), scene, new)   # only the group rule says no
+        return strict
+
+    # A double bed with its headboard on the west wall, y 1.0 .. 2.6, foot at x = 2.0.
+    bed = box('double bed', 1.0, 1.8, 1.6, 2.0, 0.5, oid='double_bed_0')
+    assert kept([bed], box('stand', 0.25, 3.0, 0.45, 0.4, 0.5))        # at the pillow
+    assert not kept([bed], box('stand', 3.0, 3.8, 0.45, 0.4, 0.5, yaw=-math.pi / 2))
+    # A desk on the east wall facing west (front at x = 4.4, y 2.4 .. 3.6): a chair at it
+    # facing it is kept, the same chair turned away or across the room is not.
+    desk = box('desk', 4.7, 3.0, 1.2, 0.6, 0.75, yaw=math.pi, oid='desk_0')
+    assert kept([desk], box('office chair', 4.1, 3.0, 0.5, 0.5, 0.9))
+    assert not kept([desk], box('office chair', 4.1, 3.0, 0.5, 0.5, 0.9, yaw=math.pi))
+    assert not kept([desk], box('office chair', 2.5, 3.4, 0.5, 0.5, 0.9))
+    # A coffee table needs lounge seating facing it within 1 m. It may come before its
+    # seats (a bedroom's importance order puts it first), and then the next seat serves it.
+    sofa = box('sofa chair', 3.0, 0.5, 0.8, 0.8, 0.9, yaw=math.pi / 2, oid='sofa_chair_0')
+    away = box('sofa chair', 3.0, 3.4, 0.8, 0.8, 0.9, yaw=math.pi / 2, oid='sofa_chair_1')
+    table = box('coffee table', 3.0, 1.5, 0.8, 0.5, 0.45, oid='coffee_table_0')
+    assert kept([sofa], table) and kept([], table) and not kept([away], table)
+    assert kept([table], sofa) and not kept([table], away)
+    # A bidet beside the toilet, backs on one wall line; not across the bathroom.
+    bath = Room('bathroom', [(0, 0), (3, 0), (3, 3), (0, 3)], 2.6,
+                doors=(Opening('door', (2.5, 0.0), 0.8, 2.0),))
+    toilet = box('toilet', 0.35, 1.0, 0.4, 0.7, 0.8, oid='toilet_0')
+    near = box('bidet', 0.3, 1.8, 0.4, 0.6, 0.4)
+    far = box('bidet', 2.7, 2.0, 0.4, 0.6, 0.4, yaw=math.pi)
+    for bidet, keeps in ((near, True), (far, False)):
+        scene = Scene(bath, [toilet])
+        assert synth.fits(synth._context(bath, 0), scene, bidet) is keeps
+        assert loose.fits(loose._context(bath, 0), scene, bidet)
+
+
+def test_rejection_keeps_the_robot_path(tiny_weights):
+    synth = Synthesizer(tiny_weights, SynthConfig(insertion_rules=()))   # the path alone
     room = Room('bedroom', [(0, 0), (5, 0), (5, 3), (0, 3)], 2.6,
                 doors=(Opening('door', (1.0, 0.0), 0.9, 2.0),
                        Opening('door', (4.0, 3.0), 0.9, 2.0)))
@@ -102,8 +145,8 @@ def test_location_mask(synth):
     desk = box('desk', 3.0, 2.0, 1.2, 0.6, 0.75, oid='desk_0')
     scene = Scene(ROOM, [desk])
     small = synth._renderer(64).render(scene, ctx.grid)
-    first = synth._mask(ctx, 'wardrobe', small)
-    second = synth._mask(ctx, 'table lamp', small)
+    first = synth._mask(ctx, scene, 'wardrobe', small)
+    second = synth._mask(ctx, scene, 'table lamp', small)
     i, j = ctx.grid.world_to_pixel((3.0, 2.0))
     assert not first[i, j] and second[i, j]            # furniture blocks, surfaces hold
     assert second.sum() == (small[8 + ctx.spec.index('desk')] > 0.5).sum()
@@ -113,7 +156,14 @@ def test_location_mask(synth):
     assert not first[oi, oj]                             # outside the floor
     # No surface for a second-tier category: nothing to sample.
     empty = synth._renderer(64).render(Scene(ROOM, []), ctx.grid)
-    assert not synth._mask(ctx, 'table lamp', empty).any()
+    assert not synth._mask(ctx, Scene(ROOM, []), 'table lamp', empty).any()
+    # A chair goes only where a table could have it: before the desk's front (x 3.3 .. 4),
+    # within its width; nowhere in a room without a table.
+    chair = synth._mask(ctx, scene, 'office chair', small)
+    assert chair[tuple(ctx.grid.world_to_pixel((3.6, 2.0)))]
+    assert not chair[tuple(ctx.grid.world_to_pixel((1.5, 1.5)))]
+    assert not chair[tuple(ctx.grid.world_to_pixel((3.6, 0.9)))]     # beside the desk
+    assert not synth._mask(ctx, Scene(ROOM, []), 'office chair', empty).any()
 
 
 # ---- modes -----------------------------------------------------------------------------------

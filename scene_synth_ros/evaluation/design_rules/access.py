@@ -216,9 +216,15 @@ def _fixture_clear(room: _Obstacles, obj: PlacedObject) -> bool:
     return _whole(found)
 
 
-def fixture_clearance(scene: Scene) -> Outcome:
+def fixture_verdicts(scene: Scene) -> dict[str, bool]:
+    """Whether each fixture (by id) keeps ``fixture_clearance``."""
     cases, room = _cases(scene, FIXTURE_CLEARANCE)
-    return sum(_fixture_clear(room, o) for o in cases), len(cases)
+    return {o.id: _fixture_clear(room, o) for o in cases}
+
+
+def fixture_clearance(scene: Scene) -> Outcome:
+    verdicts = fixture_verdicts(scene)
+    return sum(verdicts.values()), len(verdicts)
 
 
 def _side_usable(room: _Obstacles, bed: PlacedObject, which: str) -> bool:

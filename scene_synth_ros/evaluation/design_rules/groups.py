@@ -63,8 +63,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from shapely.geometry import LineString
+import shapely
+from shapely.geometry import LineString, Polygon
 
+from ...categories import CATEGORIES
 from ...scene import PlacedObject, Scene, wrap_angle
 from . import Outcome, Rule
 from .spatial import bearing, off_axes
@@ -287,6 +289,86 @@ def in_corner(scene: Scene, obj: PlacedObject) -> bool:
                for i, u in enumerate(dirs) for v in dirs[i + 1:])
 
 
+# ---- where a new piece can join its group ------------------------------------------------
+# The group rules a new piece keeps by standing by a partner already in the room, and the
+# pieces each applies to. Synthesis draws such a piece's location only where one of its
+# partners could have it (``partner_zone``); the rule's verdict then decides.
+PARTNER_RULES: dict[str, tuple[str, ...]] = {
+    'chair_at_table': CHAIRS,
+    'nightstand_by_bed': ('stand',),
+    'bidet_by_toilet': ('bidet',),
+    'coffee_table_has_seating': ('coffee table',) + LOUNGE_SEATS,
+}
+
+
+def _box(obj: PlacedObject, x0: float, x1: float, y0: float, y1: float) -> Polygon:
+    """The rectangle [x0, x1] x [y0, y1] of ``obj``'s frame (x to its front, y to its left)
+    in the world."""
+    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
+    ox, oy = obj.position[0], obj.position[1]
+    return Polygon([(ox + c * x - s * y, oy + s * x + c * y)
+                    for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))])
+
+
+def partner_zone(scene: Scene, rule: str, category: str):
+    """Where the centre of a new first-tier ``category`` piece can stand for ``rule`` (one
+    of ``PARTNER_RULES``) to hold for it, given the partners in ``scene``: a shapely
+    geometry, empty when the room holds no partner; None when the rule does not ask anything
+    of such a piece there. A generous bound (the piece's size is not known yet: its
+    category's largest half-extent is allowed for), not the rule itself."""
+    if category not in PARTNER_RULES.get(rule, ()):
+        return None
+    info = CATEGORIES[category]
+    m = max(info.width[1], info.depth[1]) / 2
+    boxes = []
+    if rule == 'chair_at_table':
+        partners = _first_tier(scene, TABLES)
+        for t in partners:
+            hx, hy = t.depth / 2, t.width / 2
+            if t.category in WORKTOPS:
+                boxes.append(_box(t, hx, hx + SEAT_REACH + m, -hy, hy))
+            else:
+                boxes.append(t.footprint().buffer(SEAT_REACH + m, join_style='mitre'))
+    elif rule == 'nightstand_by_bed':
+        if scene.room.room_type != 'bedroom':
+            return None
+        partners = _first_tier(scene, BEDS_WITH_HEAD)
+        for b in partners:
+            hx, hy = b.depth / 2, b.width / 2
+            x0, x1 = -hx - NIGHTSTAND_GAP - m, -hx + min(HEAD_END, b.depth) + NIGHTSTAND_GAP + m
+            boxes += [_box(b, x0, x1, hy, hy + NIGHTSTAND_GAP + m),
+                      _box(b, x0, x1, -hy - NIGHTSTAND_GAP - m, -hy)]
+    elif rule == 'bidet_by_toilet':
+        partners = _first_tier(scene, ('toilet',))
+        for t in partners:
+            hx, hy = t.depth / 2, t.width / 2
+            x0, x1 = -hx - SAME_LINE_OFFSET, -hx + SAME_LINE_OFFSET + 2 * m
+            boxes += [_box(t, x0, x1, hy, hy + BIDET_GAP + m),
+                      _box(t, x0, x1, -hy - BIDET_GAP - m, -hy)]
+    elif category == 'coffee table':
+        # A table may come before its seats (the importance order of a bedroom puts it
+        # before easy chairs): with no lounge seating in the room yet it goes anywhere.
+        partners = _first_tier(scene, LOUNGE_SEATS)
+        if not partners:
+            return None
+        for s in partners:
+            hx, hy = s.depth / 2, s.width / 2
+            boxes.append(_box(s, hx, hx + LOUNGE_REACH + m, -hy - m, hy + m))
+    else:
+        # Lounge seating goes anywhere, but by a coffee table still waiting for its seats.
+        partners = [scene.get(t) for t, ok in coffee_table_verdicts(scene).items() if not ok]
+        if not partners:
+            return None
+        boxes = [t.footprint().buffer(LOUNGE_REACH + m, join_style='mitre') for t in partners]
+    if not boxes:
+        return Polygon()
+    # Nor on the partner: a centre closer to it than the piece's least half-extent would put
+    # the two through each other.
+    inner = min(info.width[0], info.depth[0]) / 2
+    return shapely.union_all(boxes).difference(shapely.union_all(
+        [p.footprint().buffer(inner, join_style='mitre') for p in partners]))
+
+
 # ---- the rules ---------------------------------------------------------------------------
 def _first_tier(scene: Scene, categories) -> list[PlacedObject]:
     return [o for o in scene.objects if o.category in categories and o.support is None]
@@ -297,21 +379,35 @@ def _count(cases, keeps) -> Outcome:
     return sum(1 for c in cases if keeps(c)), len(cases)
 
 
+def _tally(verdicts: dict) -> Outcome:
+    return sum(verdicts.values()), len(verdicts)
+
+
 def desk_has_seat(scene: Scene) -> Outcome:
     seats = _first_tier(scene, SEATS)
     return _count(_first_tier(scene, DESKS), lambda d: any(seated_at(s, d) for s in seats))
 
 
-def chair_at_table(scene: Scene) -> Outcome:
+def chair_verdicts(scene: Scene) -> dict[str, bool]:
+    """Whether each chair (by id) keeps ``chair_at_table``."""
     tables = _first_tier(scene, TABLES)
-    return _count(_first_tier(scene, CHAIRS), lambda c: any(seated_at(c, t) for t in tables))
+    return {c.id: any(seated_at(c, t) for t in tables) for c in _first_tier(scene, CHAIRS)}
+
+
+def chair_at_table(scene: Scene) -> Outcome:
+    return _tally(chair_verdicts(scene))
+
+
+def nightstand_verdicts(scene: Scene) -> dict[str, bool]:
+    """Whether each stand of a bedroom (by id) keeps ``nightstand_by_bed``."""
+    if scene.room.room_type != 'bedroom':
+        return {}
+    beds = _first_tier(scene, BEDS_WITH_HEAD)
+    return {s.id: any(at_head_of(s, b) for b in beds) for s in _first_tier(scene, ('stand',))}
 
 
 def nightstand_by_bed(scene: Scene) -> Outcome:
-    if scene.room.room_type != 'bedroom':
-        return 0, 0
-    beds = _first_tier(scene, BEDS_WITH_HEAD)
-    return _count(_first_tier(scene, ('stand',)), lambda s: any(at_head_of(s, b) for b in beds))
+    return _tally(nightstand_verdicts(scene))
 
 
 def double_bed_has_nightstand(scene: Scene) -> Outcome:
@@ -320,14 +416,24 @@ def double_bed_has_nightstand(scene: Scene) -> Outcome:
                   lambda b: any(at_head_of(s, b) for s in stands))
 
 
-def bidet_by_toilet(scene: Scene) -> Outcome:
+def bidet_verdicts(scene: Scene) -> dict[str, bool]:
+    """Whether each bidet (by id) keeps ``bidet_by_toilet``."""
     toilets = _first_tier(scene, ('toilet',))
-    return _count(_first_tier(scene, ('bidet',)),
-                  lambda b: any(beside_toilet(b, t) for t in toilets))
+    return {b.id: any(beside_toilet(b, t) for t in toilets)
+            for b in _first_tier(scene, ('bidet',))}
+
+
+def bidet_by_toilet(scene: Scene) -> Outcome:
+    return _tally(bidet_verdicts(scene))
+
+
+def corner_verdicts(scene: Scene) -> dict[str, bool]:
+    """Whether each bathtub and shower (by id) keeps ``bath_in_corner``."""
+    return {o.id: in_corner(scene, o) for o in _first_tier(scene, ('bathtub', 'shower'))}
 
 
 def bath_in_corner(scene: Scene) -> Outcome:
-    return _count(_first_tier(scene, ('bathtub', 'shower')), lambda o: in_corner(scene, o))
+    return _tally(corner_verdicts(scene))
 
 
 def sofa_faces_table_or_tv(scene: Scene) -> Outcome:
@@ -339,10 +445,22 @@ def sofa_faces_table_or_tv(scene: Scene) -> Outcome:
     return _count(_first_tier(scene, ('sofa',)), keeps)
 
 
-def coffee_table_has_seating(scene: Scene) -> Outcome:
+def coffee_table_verdicts(scene: Scene) -> dict[str, bool]:
+    """Whether each coffee table (by id) keeps ``coffee_table_has_seating``."""
     seats = _first_tier(scene, LOUNGE_SEATS)
-    return _count(_first_tier(scene, ('coffee table',)),
-                  lambda t: any(lounges_at(s, t) for s in seats))
+    return {t.id: any(lounges_at(s, t) for s in seats)
+            for t in _first_tier(scene, ('coffee table',))}
+
+
+def coffee_table_has_seating(scene: Scene) -> Outcome:
+    return _tally(coffee_table_verdicts(scene))
+
+
+def seating_verdicts(scene: Scene) -> dict[str, bool]:
+    """``coffee_table_has_seating`` as insertion keeps it: a coffee table is a case only
+    once the room holds lounge seating, so that a table may come before its seats, which
+    must then serve it."""
+    return coffee_table_verdicts(scene) if _first_tier(scene, LOUNGE_SEATS) else {}
 
 
 def tv_square_on_stand(scene: Scene) -> Outcome:

@@ -190,6 +190,15 @@ def _back_gaps(scene: Scene) -> np.ndarray:
     return back_gaps(pieces, wall_runs(scene.room))
 
 
+def wall_contact_verdicts(scene: Scene) -> dict[str, bool]:
+    """Whether each piece of wall furniture (by id) keeps ``wall_contact``."""
+    pieces = [o for o in scene.first_tier if o.category in WALL_FURNITURE]
+    if not pieces:
+        return {}
+    gaps = back_gaps(pieces, wall_runs(scene.room))
+    return {o.id: bool(g <= WALL_CONTACT) for o, g in zip(pieces, gaps, strict=True)}
+
+
 def measure_wall_contact(scene: Scene) -> tuple[int, int]:
     gaps = _back_gaps(scene)
     return int(np.sum(gaps <= WALL_CONTACT)), len(gaps)
