@@ -59,6 +59,12 @@ class UnknownCategory(SceneSynthError, ValueError):
     """A category name that is not one of ``categories.CATEGORIES``."""
 
 
+class DatasetError(SceneSynthError, ValueError):
+    """A data set that cannot be imported or described at all (a missing or unreadable
+    mapping file, a bad option, a broken data-set description); problems with single rooms
+    and objects are report lines instead (``datasets.report``)."""
+
+
 # The wording of numbers and nouns inside those sentences, shared by every module that
 # writes them.
 def number(x: float) -> str:

@@ -635,3 +635,11 @@ def save_scene(scene: Scene, path: str | os.PathLike) -> None:
     """Validate ``scene`` and write it as JSON to ``path`` (via a temporary file, so a failed
     write never leaves a half-written scene behind)."""
     write_atomic(path, dump_scene(scene) + '\n')
+
+
+# What the importers of other data sets (``datasets``) reuse for scenes whose categories are
+# the data set's own: the same limits, JSON schemas, floor checks and file layout.
+plain_json = _tree
+check_against_schema = _check_schema
+check_floor = _check_floor
+format_json = _format

@@ -70,6 +70,7 @@ def test_wheel_installs_the_ament_data_files(wheel):
         assert f'{data}share/scene_synth_ros/msg_schemas/{schema}.schema.json' in names
     assert any(n.startswith(data + 'share/scene_synth_ros/examples/') for n in names)
     assert 'scene_synth_ros/corpus/calibration.json' in names
+    assert 'scene_synth_ros/datasets/room_types.yaml' in names    # the import's room types
     for rt in ('bedroom', 'living', 'office', 'bathroom'):
         assert f'scene_synth_ros/weights/{rt}.pt' in names
     for cfg in ('compact', 'paper', 'scene_synth_node'):

@@ -12,10 +12,10 @@ import argparse
 import sys
 
 from ..errors import SceneSynthError
-from . import catalog, corpus, evaluation, export, ros, synthesis, training
+from . import catalog, corpus, datasets, evaluation, export, ros, synthesis, training
 from .common import EXIT_BAD_INPUT
 
-GROUPS = (synthesis, export, training, evaluation, corpus, catalog, ros)
+GROUPS = (synthesis, export, training, evaluation, corpus, datasets, catalog, ros)
 
 
 def build_parser() -> argparse.ArgumentParser:
