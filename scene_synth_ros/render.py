@@ -444,9 +444,12 @@ class TopDownRenderer:
             self._static.put(key, layers)
         return layers
 
-    def render(self, scene: Scene, frame: Frame | None = None) -> np.ndarray:
+    def render(self, scene: Scene, frame: Frame | None = None,
+               out: np.ndarray | None = None) -> np.ndarray:
         """The image of ``scene`` in ``frame`` (default: the room's frame, the global view
-        the category and location modules see)."""
+        the category and location modules see), drawn into ``out`` when given (a float32
+        array of the image's shape, overwritten: the synthesizer reuses one per room for
+        its crops instead of allocating and stacking fresh ones)."""
         room = scene.room
         if frame is None:
             frame = Frame.for_room(room, self.resolution)
@@ -461,7 +464,14 @@ class TopDownRenderer:
             chans.append(ch)
 
         n = frame.resolution
-        out = np.zeros((FIRST_CATEGORY + len(channels), n, n), dtype=np.float32)
+        shape = (FIRST_CATEGORY + len(channels), n, n)
+        if out is None:
+            out = np.zeros(shape, dtype=np.float32)
+        elif out.shape != shape or out.dtype != np.float32:
+            raise ValueError(f'render needs a float32 array of shape {shape} to draw into, '
+                             f'got {out.dtype} {out.shape}')
+        else:
+            out.fill(0.0)
         static = self.static_layers(room, frame)
         out[ROOM:WALL + 1] = static[0:2]
         out[DOOR:WINDOW + 1] = static[2:4]

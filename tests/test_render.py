@@ -160,6 +160,21 @@ def test_height_sin_cos_and_second_tier_wins():
     assert not img[COS][empty].any()
 
 
+def test_render_draws_into_a_reused_buffer_as_into_a_fresh_one():
+    bed = obj('double bed', 0.0, 0.0, 0.0, 1.6, 2.0, 1.0, oid='bed')
+    r = TopDownRenderer()
+    fresh = r.render(Scene(SQUARE, [bed]), FRAME_64)
+    buf = np.full_like(fresh, 7.0)                 # whatever the last crop left there
+    assert r.render(Scene(SQUARE, [bed]), FRAME_64, out=buf) is buf
+    assert np.array_equal(buf, fresh)
+    r.render(Scene(SQUARE, []), FRAME_64, out=buf)  # the bed does not linger
+    assert not buf[OBJECT].any() and buf[0].any()
+    with pytest.raises(ValueError, match='float32 array of shape'):
+        r.render(Scene(SQUARE, [bed]), FRAME_64, out=np.zeros(fresh.shape))
+    with pytest.raises(ValueError, match='float32 array of shape'):
+        r.render(Scene(SQUARE, [bed]), FRAME_64, out=buf[1:])
+
+
 @pytest.mark.parametrize('k', [0, 1, 2, 3])
 def test_local_frame_equals_inverse_transformed_scene_right_angles(k):
     scene = furnished_l_scene()
