@@ -30,7 +30,8 @@ setup(
     # The weights live inside the Python package (found from __file__ wherever it is
     # installed), so they are not copied to share/ as well.
     package_data={PACKAGE: ['weights/*.pt', 'corpus/calibration.json',
-                            'datasets/room_types.yaml']},
+                            'datasets/room_types.yaml',
+                            'user_catalog/future_categories.yaml']},
     # Python dependencies are pinned once, in requirements.txt; colcon users get the
     # ROS ones from package.xml.
     install_requires=['setuptools'],

@@ -1,14 +1,23 @@
 """The model catalog: for every category a few 3D model variants of fixed dimensions.
 
-Variants span the category's size ranges on a Latin hypercube, so that small, large, low,
-tall, narrow and deep models all exist. Their dimensions are a pure function of the
-category's ranges (no randomness at run time), which keeps model ids stable across
-machines. Meshes are built on demand by ``scene_synth_ros.meshes``.
+The procedural catalog (the default): variants span the category's size ranges on a Latin
+hypercube, so that small, large, low, tall, narrow and deep models all exist. Their
+dimensions are a pure function of the category's ranges (no randomness at run time), which
+keeps model ids stable across machines. Meshes are built on demand by
+``scene_synth_ros.meshes``. The module-level functions (``variants``, ``get``, ``nearest``,
+``ranked``) are this catalog's.
+
+A ``Catalog`` is the procedural catalog with the user's own models (``UserModel``, measured
+by ``scene_synth_ros.user_catalog``) in place of the procedural models of the categories
+they cover; a category without a user model keeps the procedural ones. ``load`` gives the
+catalog of a file written by ``scene-synth catalog build`` (or the procedural one for None).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
+import os
+from typing import Iterable
 import zlib
 
 import numpy as np
@@ -81,6 +90,99 @@ def footprint_distance(v: ModelVariant, width: float, depth: float) -> float:
     return abs(np.log(v.width / width)) + abs(np.log(v.depth / depth))
 
 
-def ranked(category: str, width: float, depth: float) -> list[ModelVariant]:
-    """All variants of ``category`` from the best footprint fit to the worst."""
-    return sorted(variants(category), key=lambda v: footprint_distance(v, width, depth))
+def ranked(category: str, width: float, depth: float,
+           candidates: tuple[ModelVariant, ...] | None = None) -> list[ModelVariant]:
+    """All variants of ``category`` (or ``candidates``) from the best footprint fit to the
+    worst."""
+    pool = candidates if candidates is not None else variants(category)
+    return sorted(pool, key=lambda v: footprint_distance(v, width, depth))
+
+
+@dataclass(frozen=True)
+class UserModel(ModelVariant):
+    """One of the user's models: a mesh file and the transform that puts it in the
+    package's object frame (front +x, width along y, z up, footprint centred on the origin,
+    standing on z = 0) at its measured ``size``. A copy with another ``size`` (and id) shows
+    the same mesh stretched onto that box."""
+
+    source: str = ''                                  # absolute path of the mesh file
+    transform: tuple[float, ...] = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
+                                    0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0)  # 4x4, row-major
+
+    @property
+    def matrix(self) -> np.ndarray:
+        return np.asarray(self.transform, float).reshape(4, 4)
+
+
+class Catalog:
+    """The models synthesis retrieves from and exports show: the user's models for the
+    categories they cover, the procedural ones for every other category."""
+
+    def __init__(self, user_models: Iterable[UserModel] = (), source: str | None = None):
+        self.source = source                          # the catalog file, if read from one
+        self.user: dict[str, UserModel] = {}
+        by_category: dict[str, list[UserModel]] = {}
+        for m in user_models:
+            if m.model_id in self.user:
+                raise ValueError(f'two user models with the id {m.model_id!r}')
+            self.user[m.model_id] = m
+            by_category.setdefault(m.category, []).append(m)
+        self._by_category = {c: tuple(sorted(ms, key=lambda m: (m.width, m.model_id)))
+                             for c, ms in by_category.items()}
+
+    def __repr__(self) -> str:
+        return f'Catalog({len(self.user)} user models, source={self.source!r})'
+
+    @property
+    def user_categories(self) -> list[str]:
+        """The categories the user's models cover, in the package's category order."""
+        return [c for c in CATEGORIES if c in self._by_category]
+
+    def fallback(self, categories: Iterable[str]) -> list[str]:
+        """Those of ``categories`` that no user model covers (procedural models there)."""
+        return [c for c in categories if c not in self._by_category]
+
+    def variants(self, category: str) -> tuple[ModelVariant, ...]:
+        return self._by_category.get(category) or variants(category)
+
+    def user_model(self, model_id: str) -> UserModel | None:
+        return self.user.get(model_id)
+
+    def get(self, model_id: str) -> ModelVariant:
+        """A user model by id, else a procedural one (objects placed before may keep them)."""
+        return self.user.get(model_id) or get(model_id)
+
+    def all_variants(self) -> list[ModelVariant]:
+        return [v for c in CATEGORIES for v in self.variants(c)]
+
+    def nearest(self, category: str, width: float, depth: float) -> ModelVariant:
+        return nearest(category, width, depth, self.variants(category))
+
+    def ranked(self, category: str, width: float, depth: float) -> list[ModelVariant]:
+        return ranked(category, width, depth, self.variants(category))
+
+
+PROCEDURAL = Catalog()
+
+
+def load(source: str | os.PathLike | Catalog | None) -> Catalog:
+    """The catalog of ``source``: the procedural one for None, a Catalog as it is, else the
+    file ``scene-synth catalog build`` wrote (read once per file version;
+    ``errors.CatalogError`` names what is wrong with it)."""
+    if source is None:
+        return PROCEDURAL
+    if isinstance(source, Catalog):
+        return source
+    path = os.path.abspath(os.fspath(source))
+    try:
+        st = os.stat(path)
+        stamp = (st.st_mtime_ns, st.st_size)
+    except OSError:
+        stamp = None                  # the reader says what is wrong with the path
+    return _load_file(path, stamp)
+
+
+@lru_cache(maxsize=8)
+def _load_file(path: str, stamp) -> Catalog:
+    from .user_catalog.store import read_catalog
+    return read_catalog(path)

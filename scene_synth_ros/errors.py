@@ -85,3 +85,9 @@ def number(x: float) -> str:
 def with_article(noun: str) -> str:
     """The noun with its indefinite article ('a bedroom', 'an office')."""
     return f'{"an" if noun[:1] in "aeiou" else "a"} {noun}'
+
+
+class CatalogError(SceneSynthError, ValueError):
+    """A user catalog that cannot be built or read at all (no manifest, a manifest or
+    catalog file that is not what it should be); problems with single models are report
+    lines instead (``user_catalog.build``)."""

@@ -410,13 +410,16 @@ def _range(lo: float, hi: float) -> str:
     return f'{number(lo * (1 - SIZE_SLACK))} to {number(hi * (1 + SIZE_SLACK))} m'
 
 
-def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str) -> list[PlacedObject]:
+def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str,
+                   models: catalog.Catalog | None = None) -> list[PlacedObject]:
     """PlacedObjects of (already schema-valid) object dicts, checked against the room;
-    missing ids and model ids are filled in."""
+    missing ids and model ids (from ``models``, default the procedural catalog) are filled
+    in."""
+    models = catalog.load(models)
     spec = room_spec(room.room_type)
     seen: dict[str, int] = {}
     for i, d in enumerate(items):
-        _check_object(d, _join(prefix, i), room, spec)
+        _check_object(d, _join(prefix, i), room, spec, models)
         if d.get('id') is not None:
             ipath = _join(_join(prefix, i), 'id')
             if d['id'] in seen:
@@ -432,14 +435,15 @@ def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str) -> list
         size = tuple(float(v) for v in d['size'])
         model_id = d.get('model_id')
         if model_id is None:
-            model_id = catalog.nearest(d['category'], size[0], size[1]).model_id
+            model_id = models.nearest(d['category'], size[0], size[1]).model_id
         objects.append(PlacedObject(str(d['id']), d['category'], model_id,
                                     tuple(float(v) for v in d['position']), float(d['yaw']),
                                     size, d.get('support')))
     return objects
 
 
-def _check_object(d: dict[str, Any], path: str, room: Room, spec: RoomTypeSpec) -> None:
+def _check_object(d: dict[str, Any], path: str, room: Room, spec: RoomTypeSpec,
+                  models: catalog.Catalog = catalog.PROCEDURAL) -> None:
     """One object dict's category, size, position and model id against the room."""
     category = d['category']
     cpath = _join(path, 'category')
@@ -475,7 +479,7 @@ def _check_object(d: dict[str, Any], path: str, room: Room, spec: RoomTypeSpec) 
     if d.get('model_id') is not None:
         mpath = _join(path, 'model_id')
         try:
-            model = catalog.get(d['model_id'])
+            model = models.get(d['model_id'])
         except KeyError:
             raise SceneValidationError(
                 f'{mpath} {quoted(d["model_id"])} is not a catalog model id', mpath) from None
@@ -544,32 +548,34 @@ def validate_scene_dict(d: Any) -> None:
     _scene_from_dict(_tree(d))
 
 
-def _layout_to_scene(d: Any) -> Scene:
+def _layout_to_scene(d: Any, models: catalog.Catalog | None = None) -> Scene:
     _check_schema(d, 'room_layout')
     room = _build_room(d, '')
     items = d.get('objects', [])
-    objects = _build_objects(items, room, 'objects')
+    objects = _build_objects(items, room, 'objects', models)
     return Scene(room, objects, {'request_id': d['request_id']} if 'request_id' in d else {})
 
 
-def _scene_from_dict(d: Any) -> Scene:
+def _scene_from_dict(d: Any, models: catalog.Catalog | None = None) -> Scene:
     _check_schema(d, 'scene')
     room = _build_room(d['room'], 'room')
-    objects = _build_objects(d.get('objects', []), room, 'objects')
+    objects = _build_objects(d.get('objects', []), room, 'objects', models)
     return Scene(room, objects, dict(d.get('meta', {})))
 
 
-def parse_room_layout(text_or_dict: Any) -> Scene:
+def parse_room_layout(text_or_dict: Any, catalog: catalog.Catalog | None = None) -> Scene:
     """A room layout (JSON or YAML text, bytes or dict), possibly with objects, as a
     validated Scene.
 
     Missing object ids are assigned with ``Scene.new_id`` and missing model ids with
     ``catalog.nearest``; the room type becomes its canonical name. The scene's meta holds
-    the layout's ``request_id``, if it has one, and nothing else.
+    the layout's ``request_id``, if it has one, and nothing else. Model ids are those of
+    ``catalog`` (a user catalog, ``catalog.Catalog``; default: the procedural one), here and
+    in every reader and writer below.
     """
     d = _load(text_or_dict, yaml_ok=True)
     try:
-        return _layout_to_scene(d)
+        return _layout_to_scene(d, catalog)
     except SceneValidationError as e:
         if looks_like_python_dict(text_or_dict):
             raise SceneValidationError(f'{e}; {PYTHON_DICT_HINT}', e.path) from None
@@ -582,27 +588,27 @@ def read_payload(text_or_dict: Any) -> Any:
     return _load(text_or_dict, yaml_ok=True)
 
 
-def parse_scene(text_or_dict: Any) -> Scene:
+def parse_scene(text_or_dict: Any, catalog: catalog.Catalog | None = None) -> Scene:
     """A scene (JSON text, bytes or dict, as written by ``dump_scene``) as a validated Scene."""
-    return _scene_from_dict(_load(text_or_dict))
+    return _scene_from_dict(_load(text_or_dict), catalog)
 
 
-def load_scene(path: str | os.PathLike) -> Scene:
+def load_scene(path: str | os.PathLike, catalog: catalog.Catalog | None = None) -> Scene:
     """Read a scene file; a file whose top level has no ``"room"`` is read as a room layout.
 
     I/O errors (a missing file, ...) propagate as OSError.
     """
     d = _load(Path(path).read_text(encoding='utf-8'), yaml_ok=True)
     if isinstance(d, dict) and 'room' not in d:
-        return _layout_to_scene(d)
-    return _scene_from_dict(d)
+        return _layout_to_scene(d, catalog)
+    return _scene_from_dict(d, catalog)
 
 
-def dump_scene(scene: Scene) -> str:
+def dump_scene(scene: Scene, catalog: catalog.Catalog | None = None) -> str:
     """The scene as JSON text, validated first (an invalid scene raises
     SceneValidationError, so nothing invalid is ever written)."""
     d = _tree(scene.to_dict())
-    _scene_from_dict(d)
+    _scene_from_dict(d, catalog)
     try:
         return _format(d)
     except (TypeError, ValueError) as e:
@@ -631,10 +637,11 @@ def _has_dict(value: Any) -> bool:
     return isinstance(value, list) and any(_has_dict(v) for v in value)
 
 
-def save_scene(scene: Scene, path: str | os.PathLike) -> None:
+def save_scene(scene: Scene, path: str | os.PathLike,
+               catalog: catalog.Catalog | None = None) -> None:
     """Validate ``scene`` and write it as JSON to ``path`` (via a temporary file, so a failed
     write never leaves a half-written scene behind)."""
-    write_atomic(path, dump_scene(scene) + '\n')
+    write_atomic(path, dump_scene(scene, catalog) + '\n')
 
 
 # What the importers of other data sets (``datasets``) reuse for scenes whose categories are

@@ -192,6 +192,11 @@ class SynthConfig:
                                         'chair_at_table', 'nightstand_by_bed',
                                         'bidet_by_toilet', 'coffee_table_has_seating')
     device: str = 'cpu'
+    # The catalog file (``scene-synth catalog build``) whose models insertion retrieves, in
+    # place of the procedural ones of the categories it covers; None: the procedural
+    # catalog. A path, so that batches can send it to workers (a ``catalog.Catalog`` object
+    # serves one process too).
+    catalog: str | None = None
 
 
 @dataclass
@@ -227,6 +232,7 @@ class _Context:
     robot: dict[tuple[int, int], RobotState] = field(default_factory=dict)
     # (rule, id of the scene, its object count) -> the rule's verdict per case
     rules: dict[tuple[str, int, int], dict[int, bool]] = field(default_factory=dict)
+    crops: np.ndarray | None = None   # (B, C, N, N): reused for the local images
 
     @contextmanager
     def timed(self, module: str) -> Iterator[None]:
@@ -513,9 +519,17 @@ class Synthesizer:
                       yaws: list[float]) -> torch.Tensor:
         """The scene image translated to each point and turned to each yaw, as a batch."""
         r = self._renderer(ctx.frame.resolution)
-        images = [r.render(scene, Frame.local(ctx.room.room_type, pt, yaw, ctx.frame.resolution))
-                  for pt, yaw in zip(points, yaws, strict=True)]
-        return torch.from_numpy(np.stack(images)).to(self.device)
+        n = ctx.frame.resolution
+        shape = (len(points), FIRST_CATEGORY + len(ctx.spec.names), n, n)
+        # One buffer per room, drawn over for every batch of crops (a fresh 750 KB image per
+        # crop cost page faults and a copy into the batch). The networks read it before the
+        # next batch is drawn; on a GPU ``to`` copies it anyway.
+        if ctx.crops is None or ctx.crops.shape[0] < shape[0]:
+            ctx.crops = np.empty(shape, dtype=np.float32)
+        batch = ctx.crops[:shape[0]]
+        for k, (pt, yaw) in enumerate(zip(points, yaws, strict=True)):
+            r.render(scene, Frame.local(ctx.room.room_type, pt, yaw, n), out=batch[k])
+        return torch.from_numpy(batch).to(self.device)
 
     def _orientation(self, ctx: _Context, scene: Scene, c: int, points: np.ndarray
                      ) -> list[float]:
@@ -548,8 +562,9 @@ class Synthesizer:
     def candidate_models(self, ctx: _Context, scene: Scene, category: str, width: float,
                          depth: float) -> list[catalog.ModelVariant]:
         """Catalog models from the best footprint fit; among those within ``fit_slack`` of
-        the best, the ones that co-occur most with the models in the room come first."""
-        ranked = catalog.ranked(category, width, depth)
+        the best, the ones that co-occur most with the models in the room come first (the
+        user's models, which no training room holds, keep their footprint order)."""
+        ranked = catalog.load(self.config.catalog).ranked(category, width, depth)
         best = catalog.footprint_distance(ranked[0], width, depth)
         close = [v for v in ranked
                  if catalog.footprint_distance(v, width, depth) <= best + self.config.fit_slack]

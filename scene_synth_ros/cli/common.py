@@ -23,11 +23,18 @@ def room_types(value: str) -> list[str]:
     return [resolve_room_type(value)]
 
 
-def load_scene_file(path: str):
-    """The scene (or room layout) in ``path``; an error names the file."""
+def load_catalog(path: str | None):
+    """The catalog of a ``--catalog`` option: the procedural one without it."""
+    from .. import catalog
+    return catalog.load(path)
+
+
+def load_scene_file(path: str, catalog=None):
+    """The scene (or room layout) in ``path``, its model ids those of ``catalog`` (default:
+    the procedural catalog); an error names the file."""
     from ..schema import SceneValidationError, load_scene
     try:
-        return load_scene(path)
+        return load_scene(path, catalog)
     except FileNotFoundError:
         raise UserError(f'{path}: no such file') from None
     except SceneValidationError as e:
@@ -48,13 +55,14 @@ def object_table(objects, title: str = '') -> str:
     return '\n'.join(lines)
 
 
-def write_scene(scene, out: str | None, png: str | None, title: str) -> None:
+def write_scene(scene, out: str | None, png: str | None, title: str, catalog=None) -> None:
     """Save ``scene`` as JSON to ``out`` and/or as a picture to ``png`` (either may be None),
-    creating their directories and saying what was written."""
+    creating their directories and saying what was written; its model ids are those of
+    ``catalog`` (default: the procedural catalog)."""
     if out:
         from ..schema import save_scene
         Path(out).parent.mkdir(parents=True, exist_ok=True)
-        save_scene(scene, out)
+        save_scene(scene, out, catalog)
         print(f'wrote {out}')
     if png:
         from ..plot import save_png

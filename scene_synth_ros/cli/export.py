@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .common import UserError, load_scene_file, robot_from, robot_options
+from .common import UserError, load_catalog, load_scene_file, robot_from, robot_options
 
 
 def add_parser(sub) -> None:
@@ -23,6 +23,8 @@ def add_parser(sub) -> None:
                    'beside each file written)')
     c.add_argument('--fixed', action='store_true', help='furniture static instead of '
                    'dynamic bodies (SDF, MJCF, URDF, USD)')
+    c.add_argument('--catalog', help='the catalog of your own models the scene was furnished '
+                   'from (`scene-synth catalog build`): their meshes are exported')
     c.set_defaults(func=cmd_export)
 
     c = sub.add_parser('render', help='draw a scene JSON as a top-down picture')
@@ -48,7 +50,8 @@ def add_parser(sub) -> None:
 
 def cmd_export(args) -> int:
     from ..export import export_sdf, write
-    scene = load_scene_file(args.scene)
+    models = load_catalog(args.catalog)
+    scene = load_scene_file(args.scene, models)
     wanted = [(fmt, getattr(args, fmt)) for fmt in ('sdf', 'gltf', 'mjcf', 'urdf', 'usd')
               if getattr(args, fmt)]
     if not (wanted or args.sdf_model):
@@ -57,9 +60,10 @@ def cmd_export(args) -> int:
     for fmt, path in wanted + ([('sdf-model', args.sdf_model)] if args.sdf_model else []):
         try:
             if fmt == 'sdf-model':
-                export_sdf(scene, path, args.mesh_dir, fixed=args.fixed, root='model')
+                export_sdf(scene, path, args.mesh_dir, fixed=args.fixed, root='model',
+                           catalog=models)
             else:
-                write(scene, fmt, path, args.mesh_dir, fixed=args.fixed)
+                write(scene, fmt, path, args.mesh_dir, fixed=args.fixed, catalog=models)
         except OSError as e:
             raise UserError(f'cannot write {path}: {e.strerror or e}') from None
         print(f'wrote {path} ({fmt}, {len(scene.objects)} objects)')

@@ -11,6 +11,7 @@ from ..errors import quoted
 from .common import (
     WEIGHTS_DIR_HELP,
     UserError,
+    load_catalog,
     load_scene_file,
     object_table,
     robot_from,
@@ -69,6 +70,9 @@ def _synthesis_options(c, out: bool = True, batch: bool = False) -> None:
     c.add_argument('--max-objects', type=int, help='cap on objects in the room (default 30)')
     c.add_argument('--weights-dir', help=WEIGHTS_DIR_HELP)
     c.add_argument('--device', choices=('cpu', 'cuda', 'auto'))
+    c.add_argument('--catalog', help='a catalog of your own models (`scene-synth catalog '
+                   'build`): their categories are furnished with them, the others with the '
+                   'procedural models')
     robot_options(c)
     if out:
         c.add_argument('--out', help='write the scene JSON here (a batch: its directory)')
@@ -117,7 +121,24 @@ def _synth_config(args):
         cfg.device = args.device
     if hasattr(args, 'robot_radius'):
         cfg.robot = robot_from(args)
+    if getattr(args, 'catalog', None):
+        load_catalog(args.catalog)           # a bad file is one sentence before any work
+        cfg.catalog = str(Path(args.catalog).resolve())
     return cfg
+
+
+def _catalog_line(args, room_type: str) -> str | None:
+    """Which of the room type's categories the user's catalog furnishes, and which fall
+    back to the procedural models; None without --catalog."""
+    if not getattr(args, 'catalog', None):
+        return None
+    from ..categories import room_spec
+    names = room_spec(room_type).names
+    models = load_catalog(args.catalog)
+    fallback = models.fallback(names)
+    own = [c for c in names if c not in fallback]
+    return (f'catalog {args.catalog}: your models for {", ".join(own) or "no category"}; '
+            f'procedural models for {", ".join(fallback) or "no category"}')
 
 
 def _synthesizer(args):
@@ -153,7 +174,9 @@ def cmd_generate(args) -> int:
     print(_timing_line(result))
     print(f'physical check: {check_scene(result.scene).summary()}')
     print(f'robot: {result.robot.sentence()}')
-    write_scene(result.scene, args.out, args.png, title)
+    if line := _catalog_line(args, room.room_type):
+        print(line)
+    write_scene(result.scene, args.out, args.png, title, load_catalog(args.catalog))
     return 0
 
 
@@ -164,15 +187,17 @@ def cmd_complete(args) -> int:
         return _cmd_batch(args, 'complete')
     _one_room_only(args)
     synth = _synthesizer(args)
-    scene = load_scene_file(args.scene)
+    scene = load_scene_file(args.scene, load_catalog(args.catalog))
     result = synth.complete(scene, args.seed)
     print(object_table(scene.objects, f'kept ({len(scene.objects)}):'))
     print(object_table(result.added, f'added ({len(result.added)}):'))
     print(_timing_line(result))
     print(f'physical check: {check_scene(result.scene).summary()}')
     print(f'robot: {result.robot.sentence()}')
+    if line := _catalog_line(args, scene.room.room_type):
+        print(line)
     write_scene(result.scene, args.out, args.png,
-                f'{Path(args.scene).stem} completed (seed {args.seed})')
+                f'{Path(args.scene).stem} completed (seed {args.seed})', load_catalog(args.catalog))
     return 0
 
 
@@ -190,6 +215,9 @@ def _one_room_only(args) -> None:
 def _cmd_batch(args, mode: str) -> int:
     """``generate``/``complete`` over many rooms (``batch.run_batch``)."""
     from ..batch import BatchConfig, Source, run_batch
+    if args.catalog:
+        raise UserError('--catalog furnishes one room at a time for now; a batch (-n, '
+                        '--layouts, a directory) writes procedural model ids only')
     if not args.out:
         raise UserError('a batch needs --out DIR, the directory its rooms go to')
     if args.png not in (None, True):
@@ -219,7 +247,7 @@ def cmd_suggest(args) -> int:
     if args.k < 1:
         raise UserError(f'-k must be at least 1, got {args.k}')
     synth = _synthesizer(args)
-    scene = load_scene_file(args.scene)
+    scene = load_scene_file(args.scene, load_catalog(args.catalog))
     found = synth.suggest(scene, args.k, args.seed)
     print(object_table(found, f'{len(found)} proposals for the next object of '
                               f'{Path(args.scene).name}:'))

@@ -11,7 +11,9 @@
 
 Shared by all: ``architecture`` (the floor slab and the wall pieces with their openings),
 ``physics`` (each object's collision pieces, mass and inertia: one model for every format)
-and ``meshfiles`` (the catalog meshes written once into a folder, named relatively).
+and ``meshfiles`` (the catalog meshes written once into a folder, named relatively). Every
+writer takes a ``catalog`` (``catalog.Catalog``): objects whose model is one of the user's
+show the user's mesh, stretched to the object's size; the others the procedural meshes.
 ``rest`` loads MJCF and URDF exports in MuJoCo and PyBullet and checks that the furniture
 stands still.
 
@@ -24,6 +26,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
+from ..catalog import Catalog
 from ..errors import SceneSynthError, quoted
 from ..scene import Scene
 from .architecture import (
@@ -83,13 +86,14 @@ def parse_formats(text: str) -> tuple[str, ...]:
 
 
 def write(scene: Scene, fmt: str, path: str | Path, mesh_dir: str | Path | None = None,
-          fixed: bool = False) -> Path:
+          fixed: bool = False, catalog: Catalog | None = None) -> Path:
     """Write ``scene`` in format ``fmt`` to ``path``; mesh files go to ``mesh_dir`` (default
-    ``<stem>_meshes/`` beside ``path``); ``fixed`` makes the furniture static."""
+    ``<stem>_meshes/`` beside ``path``); ``fixed`` makes the furniture static; objects of the
+    user's ``catalog`` (``catalog.Catalog``) show the user's meshes."""
     f = FORMATS[fmt]
     if not f.meshes:
-        return f.writer(scene, path)
-    return f.writer(scene, path, mesh_dir, fixed=fixed)
+        return f.writer(scene, path, catalog=catalog)
+    return f.writer(scene, path, mesh_dir, fixed=fixed, catalog=catalog)
 
 __all__ = [
     'FLOOR_THICKNESS', 'FORMATS', 'WALL_THICKNESS', 'Body', 'Format', 'PhysicsConfig', 'Piece',

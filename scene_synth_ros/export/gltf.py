@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
+from ..catalog import Catalog
 from ..meshes import scene_mesh
 from ..scene import Scene
 from .architecture import FLOOR_RGBA, WALL_RGBA, room_meshes
@@ -18,9 +19,10 @@ from .architecture import FLOOR_RGBA, WALL_RGBA, room_meshes
 Z_UP_TO_Y_UP = np.array([[1, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0], [0, 0, 0, 1]], float)
 
 
-def export_gltf(scene: Scene, path: str | Path) -> Path:
-    """One binary glTF of the room and its objects, y-up as glTF viewers expect."""
-    out = scene_mesh(scene)
+def export_gltf(scene: Scene, path: str | Path, catalog: Catalog | None = None) -> Path:
+    """One binary glTF of the room and its objects, y-up as glTF viewers expect; objects
+    of the user's ``catalog`` show the user's meshes."""
+    out = scene_mesh(scene, catalog)
     for name, mesh in room_meshes(scene.room).items():
         colour = list(FLOOR_RGBA if name == 'floor' else WALL_RGBA)
         mesh.visual = trimesh.visual.TextureVisuals(

@@ -32,6 +32,7 @@ from xml.etree import ElementTree as ET
 
 import numpy as np
 
+from ..catalog import Catalog
 from ..files import safe_name
 from ..meshes import MATERIALS
 from ..scene import Scene
@@ -138,14 +139,14 @@ def _body(world, body: Body, visuals, fixed: bool) -> None:
 
 def export_mjcf(scene: Scene, path: str | Path, mesh_dir: str | Path | None = None,
                 fixed: bool = False, physics: PhysicsConfig = DEFAULT_PHYSICS,
-                options: MjcfOptions = MjcfOptions()) -> Path:
+                options: MjcfOptions = MjcfOptions(), catalog: Catalog | None = None) -> Path:
     """Write ``scene`` as an MJCF model to ``path``; per-material OBJ meshes go to
     ``mesh_dir`` (default ``<stem>_meshes/`` beside the file), named relative to it.
     ``fixed`` welds the furniture to the world instead of giving it free joints."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     meshes = MeshFolder(mesh_dir or path.parent / f'{path.stem}_meshes', path.parent)
-    bodies = scene_bodies(scene, physics)
+    bodies = scene_bodies(scene, physics, catalog)
     root = ET.Element('mujoco', model='scene_synth_room')
     _header(root, options, physics.friction)
     visuals = _assets(root, scene, bodies, meshes)

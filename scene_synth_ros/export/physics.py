@@ -43,7 +43,7 @@ import math
 import numpy as np
 from shapely.geometry import LineString, Point, Polygon
 
-from ..catalog import ModelVariant
+from ..catalog import Catalog, ModelVariant
 from ..geometry import COLLISION_TOLERANCE, shrunk_footprint
 from ..meshes import build_parts, variant_for
 from ..scene import PlacedObject, Room, Scene, rotation
@@ -293,12 +293,13 @@ def mass_properties(pieces: tuple[Piece, ...], mass: float
 
 
 def body_of(obj: PlacedObject, room: Room, parent: PlacedObject | None = None,
-            config: PhysicsConfig = DEFAULT_PHYSICS) -> Body:
+            config: PhysicsConfig = DEFAULT_PHYSICS, catalog: Catalog | None = None) -> Body:
     """``obj`` as a rigid body in ``room``, standing on the floor or on ``parent``. Its
     pieces keep inside the floor, or inside the parent's footprint (less the clearance):
     an overhanging second-tier object would otherwise reach into the parent's neighbour,
-    as a plant on a nightstand does into a taller desk beside it."""
-    variant = variant_for(obj)
+    as a plant on a nightstand does into a taller desk beside it. ``catalog``: the user's
+    models the object may show (``meshes.variant_for``)."""
+    variant = variant_for(obj, catalog)
     region = room.polygon if parent is None else shrunk_footprint(parent, config.clearance)
     insets = np.full(4, config.clearance) + outside_insets(obj, region)
     pieces = clipped_pieces(model_pieces(variant, config.merge), obj.size, insets)
@@ -308,10 +309,12 @@ def body_of(obj: PlacedObject, room: Room, parent: PlacedObject | None = None,
                 float(obj.yaw), pieces, float(mass), com, inertia, obj.support)
 
 
-def scene_bodies(scene: Scene, config: PhysicsConfig = DEFAULT_PHYSICS) -> list[Body]:
+def scene_bodies(scene: Scene, config: PhysicsConfig = DEFAULT_PHYSICS,
+                 catalog: Catalog | None = None) -> list[Body]:
     """Every object of ``scene`` as a rigid body, in the scene's order."""
     by_id = {o.id: o for o in scene.objects}
-    return [body_of(o, scene.room, by_id.get(o.support) if o.support else None, config)
+    return [body_of(o, scene.room, by_id.get(o.support) if o.support else None, config,
+                    catalog)
             for o in scene.objects]
 
 

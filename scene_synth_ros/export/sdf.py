@@ -16,6 +16,7 @@ from __future__ import annotations
 from pathlib import Path
 from xml.etree import ElementTree as ET
 
+from ..catalog import Catalog
 from ..files import safe_name
 from ..scene import Scene
 from .architecture import FLOOR_RGBA, FLOOR_THICKNESS, WALL_RGBA, floor_box, wall_boxes
@@ -120,7 +121,8 @@ def _uri(meshes: MeshFolder, path: Path, world_dir: Path) -> str:
 
 def export_sdf(scene: Scene, path: str | Path, mesh_dir: str | Path | None = None,
                fixed: bool = False, root: str = 'world',
-               physics: PhysicsConfig = DEFAULT_PHYSICS) -> Path:
+               physics: PhysicsConfig = DEFAULT_PHYSICS, catalog: Catalog | None = None
+               ) -> Path:
     """Write ``scene`` as SDF to ``path``; OBJ meshes go to ``mesh_dir`` (default
     ``<stem>_meshes/`` beside the file). ``fixed`` makes the furniture static; ``root`` is
     ``'world'`` (a world file for ``gz sim``) or ``'model'`` (one model to spawn)."""
@@ -137,7 +139,7 @@ def export_sdf(scene: Scene, path: str | Path, mesh_dir: str | Path | None = Non
     else:
         parent = _sub(sdf, 'model', name=safe_name(path.stem))
     _architecture(parent, scene)
-    for body in scene_bodies(scene, physics):
+    for body in scene_bodies(scene, physics, catalog):
         uri = _uri(meshes, meshes.obj(body.variant), path.parent)
         _object(parent, body, uri, fixed, physics.friction)
     ET.indent(sdf)

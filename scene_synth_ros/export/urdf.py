@@ -25,6 +25,7 @@ from xml.etree import ElementTree as ET
 
 import numpy as np
 
+from ..catalog import Catalog
 from ..files import safe_name
 from ..scene import Scene
 from .architecture import FLOOR_RGBA, WALL_RGBA, floor_box, floor_slab, wall_boxes
@@ -121,7 +122,8 @@ def _object_urdf(body: Body, path: Path, meshes: MeshFolder, friction: float) ->
 
 
 def export_urdf(scene: Scene, path: str | Path, mesh_dir: str | Path | None = None,
-                fixed: bool = False, physics: PhysicsConfig = DEFAULT_PHYSICS) -> Path:
+                fixed: bool = False, physics: PhysicsConfig = DEFAULT_PHYSICS,
+                catalog: Catalog | None = None) -> Path:
     """Write ``scene`` as URDF: the room at ``path``, one URDF per object in
     ``<stem>_objects/``, and ``<stem>.poses.json``; OBJ meshes go to ``mesh_dir`` (default
     ``<stem>_meshes/`` beside ``path``). Returns ``path``."""
@@ -133,7 +135,7 @@ def export_urdf(scene: Scene, path: str | Path, mesh_dir: str | Path | None = No
     objects.mkdir(exist_ok=True)
     meshes = MeshFolder(folder, objects)
     entries = []
-    for body in scene_bodies(scene, physics):
+    for body in scene_bodies(scene, physics, catalog):
         file = objects / f'{safe_name(body.id)}.urdf'
         _object_urdf(body, file, meshes, physics.friction)
         entries.append({'id': body.id, 'category': body.category,

@@ -29,7 +29,7 @@ import tempfile
 
 import numpy as np
 
-from ..catalog import ModelVariant
+from ..catalog import Catalog, ModelVariant
 from ..meshes import MATERIALS, material_meshes
 from ..scene import Scene
 from .architecture import FLOOR_RGBA, WALL_RGBA, floor_slab, wall_boxes
@@ -164,7 +164,8 @@ def _object(stage, path: str, body: Body, model_file: str, fixed: bool,
 
 
 def export_usd(scene: Scene, path: str | Path, mesh_dir: str | Path | None = None,
-               fixed: bool = False, physics: PhysicsConfig = DEFAULT_PHYSICS) -> Path:
+               fixed: bool = False, physics: PhysicsConfig = DEFAULT_PHYSICS,
+               catalog: Catalog | None = None) -> Path:
     """Write ``scene`` as a USD stage to ``path`` (``.usda`` text, ``.usd``/``.usdc``
     binary); each catalog model goes to ``mesh_dir`` (default ``<stem>_meshes/`` beside the
     file) as a ``.usdc`` layer the stage references by relative path. ``fixed`` makes the
@@ -201,7 +202,7 @@ def export_usd(scene: Scene, path: str | Path, mesh_dir: str | Path | None = Non
     _room(stage, scene, physics_material)
     UsdGeom.Xform.Define(stage, '/World/Objects')
     taken: set[str] = set()
-    for body in scene_bodies(scene, physics):
+    for body in scene_bodies(scene, physics, catalog):
         model_file = './' + meshes.relative(meshes.usd(body.variant))
         name = _identifier(body.id, taken)
         _object(stage, f'/World/Objects/{name}', body, model_file, fixed, physics_material)

@@ -15,7 +15,7 @@ from types import ModuleType
 import numpy as np
 import trimesh
 
-from ..catalog import ModelVariant
+from ..catalog import ModelVariant, UserModel
 from .builder import Builder, BuildFn, Part
 from .furniture import (
     bathroom,
@@ -66,6 +66,9 @@ def build_parts(variant: ModelVariant) -> tuple[Part, ...]:
     """The named parts of ``variant``'s mesh, already fitted to its box (read-only arrays)."""
     if min(variant.size) <= 0:
         raise ValueError(f'{variant.model_id}: sizes must be positive, got {variant.size}')
+    if isinstance(variant, UserModel):          # the user's mesh, not a builder's sketch
+        from ..user_catalog.mesh import user_parts
+        return user_parts(variant)
     b = Builder(variant)
     builder_for(variant.category)(b)
     return b.finish()

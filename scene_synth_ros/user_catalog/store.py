@@ -1,0 +1,133 @@
+"""The catalog file ``scene-synth catalog build`` writes, and reading it back.
+
+JSON, so that using a catalog never re-reads its meshes::
+
+    {"format": "scene_synth_ros user catalog", "version": 1,
+     "models": [{"model_id": "red_chair", "category": "straight chair",
+                 "file": "meshes/red_chair.glb", "size": [0.45, 0.52, 0.9],
+                 "up": "+y", "front": "+z", "scale": 1.0, "offset": [0.01, 0.0, 0.0]}],
+     "report": ["models[3] 'lamp.obj': no such file"]}
+
+``file`` is relative to the catalog file's folder (the two move together); ``size`` is
+(width, depth, height) in metres; ``offset`` centres the turned and scaled model
+(``measure.placement``). A catalog file that is not what it should be is a
+``CatalogError`` naming the first problem.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .. import catalog
+from ..catalog import Catalog, UserModel
+from ..errors import CatalogError, quoted
+from ..files import write_atomic
+from ..schema import format_json
+from .axes import parse_axis
+from .measure import placement
+from .spec import MAX_ID, category_of
+
+FORMAT = 'scene_synth_ros user catalog'
+VERSION = 1
+
+
+def model_record(m: UserModel, folder: Path) -> dict[str, Any]:
+    """``m`` as the catalog file keeps it, its file relative to ``folder``."""
+    t = m.matrix
+    scale = float(np.linalg.norm(t[:3, 0]))
+    rows = t[:3, :3] / scale
+    up, front = _axis(rows.T @ (0, 0, 1)), _axis(rows.T @ (1, 0, 0))
+    return {'model_id': m.model_id, 'category': m.category,
+            'file': Path(os.path.relpath(m.source, folder.resolve())).as_posix(),
+            'size': [round(float(v), 6) for v in m.size], 'up': up, 'front': front,
+            'scale': scale, 'offset': [round(float(v), 6) + 0.0 for v in t[:3, 3]]}
+
+
+def _axis(v: np.ndarray) -> str:
+    k = int(np.argmax(np.abs(v)))
+    return f'{"+" if v[k] > 0 else "-"}{"xyz"[k]}'
+
+
+def write_catalog(path: str | Path, models: list[UserModel], report: list[str]) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    data = {'format': FORMAT, 'version': VERSION,
+            'models': [model_record(m, path.parent) for m in models],
+            'report': list(report)}
+    write_atomic(path, format_json(data) + '\n')
+    return path
+
+
+def read_catalog(path: str | Path) -> Catalog:
+    """The Catalog of a catalog file (the procedural catalog under the user's models)."""
+    path = Path(path)
+    name = quoted(str(path), 80)
+    try:
+        data = json.loads(path.read_text(encoding='utf-8'))
+    except FileNotFoundError:
+        raise CatalogError(f'the catalog {name} does not exist (`scene-synth catalog build` '
+                           f'writes one)') from None
+    except (OSError, UnicodeDecodeError) as e:
+        raise CatalogError(f'cannot read the catalog {name}: '
+                           f'{getattr(e, "strerror", None) or e}') from None
+    except json.JSONDecodeError as e:
+        raise CatalogError(f'the catalog {name} is not valid JSON: {e.msg} at line '
+                           f'{e.lineno}') from None
+    if not isinstance(data, dict) or data.get('format') != FORMAT:
+        raise CatalogError(f'{name} is not a catalog written by `scene-synth catalog build`')
+    if data.get('version') != VERSION or not isinstance(data.get('models'), list):
+        raise CatalogError(f'the catalog {name} is of version {quoted(data.get("version"))}; '
+                           f'this package reads version {VERSION}: build it again')
+    models, seen = [], set()
+    for i, record in enumerate(data['models']):
+        try:
+            m = _model(record, path.parent)
+        except (KeyError, TypeError, ValueError) as e:
+            raise CatalogError(f'the catalog {name}: models[{i}] is broken ({e}); build it '
+                               f'again') from None
+        if m.model_id in seen:
+            raise CatalogError(f'the catalog {name}: models[{i}] repeats the id '
+                               f'{quoted(m.model_id)}')
+        seen.add(m.model_id)
+        models.append(m)
+    return Catalog(models, source=str(path))
+
+
+def _numbers(value: Any, n: int, positive: bool = False) -> tuple[float, ...]:
+    if not isinstance(value, list) or len(value) != n:
+        raise ValueError(f'expected a list of {n} numbers')
+    out = tuple(float(v) for v in value)
+    if not all(math.isfinite(v) and (v > 0 or not positive) for v in out):
+        raise ValueError(f'expected {"positive " if positive else ""}finite numbers')
+    return out
+
+
+def _model(record: dict[str, Any], folder: Path) -> UserModel:
+    model_id = record['model_id']
+    if not isinstance(model_id, str) or not 0 < len(model_id) <= MAX_ID or '@' in model_id:
+        raise ValueError('a bad model_id')
+    try:
+        catalog.get(model_id)
+    except KeyError:
+        pass
+    else:
+        raise ValueError(f'model_id {model_id!r} is a procedural model\'s')
+    category = category_of(record['category'])
+    if category is None or category != record['category']:
+        raise ValueError(f'category {record["category"]!r} is not one of ours')
+    up, front = record['up'], record['front']
+    if parse_axis(up) is None or parse_axis(front) is None or \
+            abs(float(parse_axis(up) @ parse_axis(front))) > 0.5:
+        raise ValueError('up and front must be two different axes')
+    scale = _numbers([record['scale']], 1, positive=True)[0]
+    size = _numbers(record['size'], 3, positive=True)
+    offset = _numbers(record['offset'], 3)
+    source = (folder / str(record['file'])).resolve()
+    m = placement(up, front, scale, offset)
+    return UserModel(model_id, category, size, 0, str(source),
+                     tuple(float(v) for v in m.ravel()))
