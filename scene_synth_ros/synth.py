@@ -233,6 +233,7 @@ class _Context:
     # (rule, id of the scene, its object count) -> the rule's verdict per case
     rules: dict[tuple[str, int, int], dict[int, bool]] = field(default_factory=dict)
     crops: np.ndarray | None = None   # (B, C, N, N): reused for the local images
+    waived: frozenset[str] = frozenset()   # insertion rules not kept in this context
 
     @contextmanager
     def timed(self, module: str) -> Iterator[None]:
@@ -366,6 +367,13 @@ class Synthesizer:
                                   f'{scene.room.room_type} rooms')
         if len(scene.objects) >= self.config.max_objects:
             return None
+        if category is not None:
+            # A piece the user names goes by a partner when the room has one; in a room with
+            # none, the group rule that would refuse it outright is waived for it.
+            ctx.waived = frozenset(
+                rule for rule in self.config.insertion_rules
+                if (zone := groups.partner_zone(scene, rule, category)) is not None
+                and zone.is_empty)
         with torch.inference_mode():
             obj, _ = self._insert_one(ctx, scene, allow_stop=False, only=category)
         return obj
@@ -502,6 +510,8 @@ class Synthesizer:
             # rules insertion keeps (a departure from the paper, as the rules are): the
             # location module spreads such pieces over the room.
             for rule in self.config.insertion_rules:
+                if rule in ctx.waived:
+                    continue
                 zone = groups.partner_zone(scene, rule, category)
                 if zone is not None:
                     mask &= shapely.contains_xy(zone, ctx.centres[:, 0],
@@ -634,7 +644,8 @@ class Synthesizer:
         # The design rules kept at insertion, then the robot promise: what held before this
         # object must hold after it, and the object must keep them itself.
         for name in self.config.insertion_rules:
-            if name in RULE_CATEGORIES and obj.category not in RULE_CATEGORIES[name]:
+            if name in ctx.waived or (name in RULE_CATEGORIES
+                                      and obj.category not in RULE_CATEGORIES[name]):
                 continue
             key = (name, id(scene), len(scene.objects))
             if key not in ctx.rules:

@@ -8,6 +8,7 @@ import torch
 
 from scene_synth_ros.categories import ROOM_TYPES
 from scene_synth_ros.corpus.generate import empty_room, generate_room
+from scene_synth_ros.evaluation.design_rules import groups
 from scene_synth_ros.geometry import check_scene, door_zone
 from scene_synth_ros.networks.bundle import BundleError, load_bundle
 from scene_synth_ros.paths import weights_dir
@@ -401,3 +402,19 @@ def test_rules_skipped_at_insertion_cannot_change_with_the_new_piece():
                         assert verdicts(after) == verdicts(before), (name, obj.category)
                         checked += 1
     assert checked > 500
+
+
+def test_a_named_piece_with_no_partner_in_the_room_is_placed():
+    """``next_object(category=...)``: the user's choice is not refused because the room has
+    no partner for it; with a partner there, the piece goes by it (shipped weights)."""
+    synth = Synthesizer()
+    room = Room('bedroom', [(0, 0), (5, 0), (5, 4), (0, 4)], 2.6,
+                doors=(Opening('door', (4.5, 0.0), 0.8, 2.0),))
+    empty = Scene(room, [])
+    chair = synth.next_object(empty, seed=3, category='office chair')
+    assert chair is not None and chair.category == 'office chair'
+    desk = box('desk', 4.7, 3.0, 1.2, 0.6, 0.75, yaw=math.pi, oid='desk_0')
+    with_desk = Scene(room, [desk])
+    chairs = [c for seed in range(3)
+              if (c := synth.next_object(with_desk, seed=seed, category='office chair'))]
+    assert chairs and all(groups.chair_verdicts(Scene(room, [desk, c]))[c.id] for c in chairs)
