@@ -1,13 +1,16 @@
 """scene_synth_node under load and hostile input, over Fast DDS (loopback): issue 12's targets.
 
     .venv/bin/python benchmarks/node_load.py [--clients 10] [--calls 50] [--fuzz 10000]
-                                             [--mixed 1000] [--domain-id N]
+                                             [--mixed 1000] [--retry both|on|off]
+                                             [--domain-id N]
 
 1. Load: ``--clients`` processes each make ``--calls`` service calls (next_object 50 %,
    generate 30 %, reset 20 %) back to back, and every tenth call publish a layout (valid, or
-   one of the bad inputs). A call is lost when no answer comes within 60 s. Prints, per
-   service, answers, "busy" answers, other failures, lost calls, median / p95 / max latency
-   (of all answers and of the non-busy ones).
+   one of the bad inputs). A call is lost when no answer comes within 60 s. Run twice
+   (``--retry both``): with "busy" answers returned to the caller, then retried by the client
+   until served. Prints, per service, answers, "busy" answers, other failures, lost calls,
+   median / p95 / max latency (of all answers and of the non-busy ones), and the calls per
+   second the run took.
 2. Fuzz: ``--fuzz`` layouts drawn from ``tests/fuzz.py`` published to the node (every 500th
    followed by a ``reset`` call that must be answered); then the node must still furnish a
    valid layout. Prints node deaths, wedges, and the largest /diagnostics message.
@@ -16,6 +19,7 @@
 4. SIGTERM with three calls in flight: exit code and seconds to exit.
 """
 import argparse
+from collections import Counter
 import json
 import multiprocessing as mp
 import os
@@ -48,9 +52,9 @@ WEIGHTS = (0.5, 0.3, 0.2)
 CALL_TIMEOUT = 60.0
 
 
-def _client(args) -> list[tuple[str, float, str]]:
-    """One client process: (service, seconds, outcome) per call; outcome is 'ok', 'busy',
-    'failed' or 'lost'."""
+def _client(args) -> list[tuple[str, float, str, str]]:
+    """One client process: (service, seconds, outcome, why it failed) per call; outcome is
+    'ok', 'busy', 'failed' or 'lost'."""
     domain, index, calls, retry = args
     rng = random.Random(index)
     out = []
@@ -63,12 +67,15 @@ def _client(args) -> list[tuple[str, float, str]]:
                 client.publish_layout(text, wait=False, check=False)
             service = rng.choices(SERVICES, WEIGHTS)[0]
             t0 = time.perf_counter()
+            why = ''
             try:
                 ok, message = client.call(service, timeout=CALL_TIMEOUT, retry_busy=retry)
                 outcome = 'ok' if ok else 'busy' if message.startswith('busy:') else 'failed'
+                if outcome == 'failed':
+                    why = ' '.join(message.split()[:2])
             except ClientError:
                 outcome = 'lost'
-            out.append((service, time.perf_counter() - t0, outcome))
+            out.append((service, time.perf_counter() - t0, outcome, why))
     return out
 
 
@@ -77,28 +84,45 @@ def _p95(values: list[float]) -> float:
 
 
 def load(domain: int, clients: int, calls: int, retry: bool) -> None:
+    counters = ('rooms served', 'requests superseded', 'requests answered busy')
+    before = _counters(domain, counters)
     ctx = mp.get_context('spawn')
     with ctx.Pool(clients) as pool:
+        t0 = time.perf_counter()
         results = pool.map(_client, [(domain, i, calls, retry) for i in range(clients)])
+        wall = time.perf_counter() - t0
     records = [r for rs in results for r in rs]
     print(f'\n1. load: {clients} clients x {calls} calls, "busy" answers '
-          f'{"retried by the client until answered" if retry else "counted as answers"}')
+          f'{"retried by the client until answered" if retry else "counted as answers"}; '
+          f'{wall:.1f} s, {len(records) / wall:.1f} calls/s (start-up included)')
     print(f'   {"service":12s} {"answers":>7s} {"busy":>5s} {"failed":>6s} {"lost":>5s} '
           f'{"median":>7s} {"p95":>7s} {"max":>7s}   (s; non-busy: median p95 max)')
     for s in SERVICES:
         mine = [r for r in records if r[0] == s]
-        answered = [t for _, t, o in mine if o != 'lost']
-        served = [t for _, t, o in mine if o in ('ok', 'failed')]
-        n = {o: sum(1 for *_, x in mine if x == o) for o in ('ok', 'busy', 'failed', 'lost')}
+        answered = [t for _, t, o, _ in mine if o != 'lost']
+        served = [t for _, t, o, _ in mine if o in ('ok', 'failed')]
+        n = {o: sum(1 for _, _, x, _ in mine if x == o) for o in ('ok', 'busy', 'failed', 'lost')}
         print(f'   {s:12s} {len(answered):7d} {n["busy"]:5d} {n["failed"]:6d} {n["lost"]:5d} '
               + (f'{statistics.median(answered):7.3f} {_p95(answered):7.3f} '
                  f'{max(answered):7.3f}' if answered else f'{"–":>7s}' * 3)
               + (f'   {statistics.median(served):.3f} {_p95(served):.3f} {max(served):.3f}'
                  if served else ''))
-    busy = [t for _, t, o in records if o == 'busy']
+    busy = [t for _, t, o, _ in records if o == 'busy']
     if busy:
         print(f'   "busy" answers: {len(busy)}, median {statistics.median(busy):.3f} s, '
               f'p95 {_p95(busy):.3f} s')
+    whys = Counter(f'{s} {why}' for s, _, o, why in records if o == 'failed')
+    print('   failed: ' + ', '.join(f'{k} ({n})' for k, n in whys.most_common()))
+    after = _counters(domain, counters)
+    print('   the node, over the run: ' + ', '.join(f'{k} {after[k] - before[k]}'
+                                                  for k in counters))
+
+
+def _counters(domain: int, names) -> dict[str, int]:
+    """The node's counters from /diagnostics."""
+    with SceneSynthClient(domain_id=domain) as client:
+        diag = client.diagnostics(timeout=10.0)
+    return {k: int(diag[k]) for k in names}
 
 
 def _diag_bytes(client: SceneSynthClient) -> int:
@@ -216,6 +240,9 @@ def main() -> int:
     ap.add_argument('--calls', type=int, default=50)
     ap.add_argument('--fuzz', type=int, default=10000)
     ap.add_argument('--mixed', type=int, default=1000)
+    ap.add_argument('--retry', choices=('both', 'on', 'off'), default='both',
+                    help='load run with "busy" answers retried by the client (on), returned '
+                         '(off), or one of each (both)')
     ap.add_argument('--domain-id', type=int, default=random.randrange(150, 230))
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
@@ -228,8 +255,8 @@ def main() -> int:
             print(f'node pid {proc.pid}, domain {args.domain_id}, resident '
                   f'{rss_mb(proc.pid):.0f} MB after its first room')
             if args.clients > 0:
-                load(args.domain_id, args.clients, args.calls, retry=False)
-                load(args.domain_id, args.clients, args.calls, retry=True)
+                for retry in {'both': (False, True), 'on': (True,), 'off': (False,)}[args.retry]:
+                    load(args.domain_id, args.clients, args.calls, retry)
             fuzz(args.domain_id, proc, args.fuzz)
             memory(args.domain_id, proc, args.mixed)
             sigterm(args.domain_id, proc)

@@ -12,8 +12,11 @@ server's calls.
 from __future__ import annotations
 
 import math
+import os
+from pathlib import Path
 import signal
 import sys
+import tempfile
 import threading
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
@@ -51,9 +54,33 @@ from .server import (
 
 NODE_NAME = 'scene_synth_node'
 EXIT_STARTUP_FAILED = 1
-# Service calls waiting for the worker hold one thread each (at most max_pending, 6): two
-# more keep answering "busy", the diagnostics timer and the subscriptions.
-EXECUTOR_THREADS = 8
+# Service calls waiting for the worker hold one thread each: at most max_pending (12) short
+# calls and as many whole-room ones (server.RANK). Two more keep answering "busy", the
+# diagnostics timer and the subscriptions.
+EXECUTOR_THREADS = 2 * PARAMETERS['max_pending'][1][1] + 2
+
+# Fast DDS's profile for the node's own endpoints. rmw_fastrtps keeps every history payload
+# at the largest size it has held (PREALLOCATED_WITH_REALLOC), so the 1-7 MB layouts that the
+# input limits refuse, which still arrive whole, left their buffers behind: +17 MB of such
+# blocks over 1,000 mixed inputs (node_load.py), more the more large messages came, up to
+# the readers' history depths. DYNAMIC frees a payload with its sample. Publication stays
+# synchronous, as rmw_fastrtps publishes in Jazzy.
+FASTDDS_PROFILES = """<?xml version="1.0" encoding="UTF-8"?>
+<dds xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
+  <profiles>
+    <data_reader profile_name="scene_synth_reader" is_default_profile="true">
+      <historyMemoryPolicy>DYNAMIC</historyMemoryPolicy>
+    </data_reader>
+    <data_writer profile_name="scene_synth_writer" is_default_profile="true">
+      <qos><publishMode><kind>SYNCHRONOUS</kind></publishMode></qos>
+      <historyMemoryPolicy>DYNAMIC</historyMemoryPolicy>
+    </data_writer>
+  </profiles>
+</dds>
+"""
+# What a user configures Fast DDS with; any of them and the node leaves Fast DDS alone.
+_FASTDDS_SETTINGS = ('FASTRTPS_DEFAULT_PROFILES_FILE', 'FASTDDS_DEFAULT_PROFILES_FILE',
+                     'RMW_FASTRTPS_USE_QOS_FROM_XML')
 
 _KINDS = {'cube': Marker.CUBE, 'mesh': Marker.MESH_RESOURCE, 'text': Marker.TEXT_VIEW_FACING,
           'triangle_list': Marker.TRIANGLE_LIST}
@@ -279,21 +306,46 @@ def _command_line(args: list[str] | None) -> int | None:
     return 2
 
 
+def steady_middleware() -> Path | None:
+    """Point Fast DDS at ``FASTDDS_PROFILES`` (through the environment, before rclpy starts)
+    unless the user configured it or chose another middleware. Returns the profile's file,
+    which may be removed once the node exists, or None when nothing was changed."""
+    if (any(k in os.environ for k in _FASTDDS_SETTINGS)
+            or Path('DEFAULT_FASTRTPS_PROFILES.xml').exists()       # Fast DDS reads that one
+            or not os.environ.get('RMW_IMPLEMENTATION', 'rmw_fastrtps_cpp').startswith(
+                'rmw_fastrtps')):
+        return None
+    try:
+        fd, name = tempfile.mkstemp(prefix='scene_synth_fastdds_', suffix='.xml')
+        with os.fdopen(fd, 'w') as f:
+            f.write(FASTDDS_PROFILES)
+    except OSError:         # no writable temporary directory: Fast DDS's defaults, as before
+        return None
+    os.environ['FASTRTPS_DEFAULT_PROFILES_FILE'] = name
+    os.environ['RMW_FASTRTPS_USE_QOS_FROM_XML'] = '1'
+    return Path(name)
+
+
 def main(args: list[str] | None = None) -> int:
     handled = _command_line(args)
     if handled is not None:
         return handled
     steady_allocator()      # before the threads and the first messages
+    profile = steady_middleware()
     # SIGINT and SIGTERM only raise a flag that the spin loop checks: letting rclpy's own
     # handlers shut the context down under a multi-threaded executor races with its wait set.
     stop = threading.Event()
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, lambda *_: stop.set())
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     node = None
     code = 0
     try:
-        node = SceneSynthNode()
+        rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+        try:
+            node = SceneSynthNode()
+        finally:
+            if profile is not None:        # read by now: no file left behind
+                profile.unlink(missing_ok=True)
         executor = MultiThreadedExecutor(num_threads=EXECUTOR_THREADS)
         executor.add_node(node)
         while not stop.is_set() and rclpy.ok():

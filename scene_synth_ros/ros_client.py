@@ -211,9 +211,9 @@ class SceneSynthClient:
 
     def call(self, service: str, timeout: float = 120.0,
              retry_busy: bool = True) -> tuple[bool, str]:
-        """Call one of ``SERVICES``: (success, message). A "busy"
-        answer (the node already has ``max_pending`` calls waiting) is retried after a
-        growing, jittered pause until ``timeout``, unless ``retry_busy`` is off."""
+        """Call one of ``SERVICES``: (success, message). A "busy" answer (the node already
+        has ``max_pending`` calls waiting ahead of this one) is retried after a growing,
+        jittered pause until ``timeout``, unless ``retry_busy`` is off."""
         client = self._services[service]
         deadline = time.monotonic() + timeout
         self.spin_until(client.service_is_ready, min(timeout, 30.0), f'{service} service')

@@ -4,19 +4,21 @@ requests that change it.
 The node (``node.py``) only turns messages into calls of ``SceneServer`` and the results
 into messages. Everything here is plain Python so it can be driven and tested from a prompt.
 
-One worker thread runs every synthesis, in the order requests arrive, so subscriptions and
-services are never blocked by the networks. A room layout supersedes whatever came before
-it: the synthesis in progress is cancelled between two insertions and older queued requests
-are dropped, so only complete rooms for the latest layout are ever handed out. Bad input is
-rejected with one sentence; the current room stays as it was.
+One worker thread runs every synthesis, so subscriptions and services are never blocked by
+the networks. It serves the cheapest kind of request first (``RANK``), in arrival order
+within a kind, and runs short calls between two insertions of a ``generate`` (see
+``_between``). A room layout supersedes whatever came before it: the synthesis in progress
+is cancelled between two insertions and older queued requests are answered at once, so only
+complete rooms for the latest layout are ever handed out. Bad input is rejected with one
+sentence; the current room stays as it was.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field, fields, replace
+import itertools
 import math
 import os
 from pathlib import Path
-import queue
 import threading
 import time
 from typing import Any, Callable
@@ -56,7 +58,7 @@ class ServerConfig:
     export_dir: str = ''                # '' = no export; else the JSON + export_formats
     export_formats: str = 'sdf,gltf'    # comma list of export.FORMATS written to export_dir
     torch_threads: int = 1              # 1 beat 2 on 2 cores beside a client (bench_node)
-    max_pending: int = 4                # service calls that may wait for the worker
+    max_pending: int = 8                # calls that may wait ahead of a service call
     next_category: str = ''             # what ~/next_object inserts; '' = the model decides
     suggestions: int = 5                # proposals in a ~/suggest answer
     robot_radius: float = 0.2           # the robot every room is furnished for (robot.Robot)
@@ -89,8 +91,9 @@ PARAMETERS: dict[str, tuple[str, Any, bool]] = {
     'export_formats': ('formats written to export_dir, a comma list of: '
                        + ', '.join(EXPORT_FORMATS), None, False),
     'torch_threads': ('CPU threads torch may use', (1, 64), True),
-    'max_pending': ('service calls that may wait for the worker; one more is answered '
-                    '"busy" at once', (1, 6), False),
+    'max_pending': ('service calls that may wait ahead of a call (reset and next_object are '
+                    'served before generate and suggest); one more is answered "busy" at once',
+                    (1, 12), False),
     'next_category': ("category of the objects ~/next_object inserts (e.g. office_chair); "
                       "'' = the category module chooses", None, False),
     'suggestions': ('how many proposals ~/suggest answers with', (1, 20), False),
@@ -102,6 +105,16 @@ PARAMETERS: dict[str, tuple[str, Any, bool]] = {
                         '(m)', CLEARANCE_RANGE, False),
 }
 REQUESTS = ('generate', 'next_object', 'reset', 'suggest')
+# The worker's order, by what a request costs: a layout first (it supersedes everything
+# queued), then the calls of one insertion at most (reset: none), then the whole-room ones.
+# Calls from different clients have no order of their own, so serving a 30 ms call before a
+# 300 ms one that came earlier breaks no promise, and keeps short calls short under load.
+RANK = {'layout': 0, 'reset': 1, 'next_object': 1, 'suggest': 2, 'generate': 2}
+SHORT = 1
+# A whole-room call that has waited this long (the issue's bound for a generate) ranks with
+# the short ones, in arrival order: short calls overtake it for a while, never for ever. A
+# shorter time put short calls behind whole rooms as soon as the queue was long (node_load).
+PROMOTE_AFTER = 5.0
 
 
 class ConfigError(SceneSynthError, ValueError):
@@ -198,7 +211,7 @@ class Status:
     rooms_served: int = 0
     inputs_rejected: int = 0
     requests_superseded: int = 0
-    requests_busy: int = 0               # calls answered "busy" (max_pending were waiting)
+    requests_busy: int = 0               # calls answered "busy" (max_pending were ahead)
     busy: bool = False
     objects: int = 0
     room_type: str = ''
@@ -226,6 +239,8 @@ class Status:
 class _Job:
     kind: str                             # 'layout' or one of REQUESTS
     epoch: int
+    seq: int = 0                          # arrival order
+    queued: float = 0.0                   # time.monotonic() of its arrival
     scene: Scene | None = None
     source: str = ''                      # where a layout came from: the topic's name
     done: threading.Event = field(default_factory=threading.Event)
@@ -264,8 +279,10 @@ class SceneServer:
         self._next_seed = config.seed
         self._scene: Scene | None = None
         self.status = Status()
-        self._queue: queue.Queue[_Job | None] = queue.Queue()
-        self._pending = 0                  # service calls queued or running
+        self._jobs: list[_Job] = []        # queued for the worker (a handful: no heap needed)
+        self._wake = threading.Condition(self._lock)
+        self._arrivals = itertools.count()
+        self._calls: list[_Job] = []       # service calls queued or running, not yet answered
         self._closing = False
         self._worker = threading.Thread(target=self._run, name='scene_synth_worker',
                                         daemon=True)
@@ -313,8 +330,14 @@ class SceneServer:
             return False
         with self._lock:
             self._epoch += 1
-            job = _Job('layout', self._epoch, scene, source)
-        self._queue.put(job)
+            self._queue('layout', scene=scene, source=source)
+            # What was queued before it is for an older room: answered now, not after this
+            # layout is furnished (it is served first).
+            stale = [j for j in self._jobs if self._stale(j)]
+            self._jobs = [j for j in self._jobs if not self._stale(j)]
+        for old in stale:
+            self._supersede(old)
+            old.done.set()
         return True
 
     def submit_polygon(self, points, frame_id: str = '') -> bool:
@@ -331,26 +354,27 @@ class SceneServer:
         return self.submit_layout(layout, 'room_polygon')
 
     def request(self, kind: str, timeout: float = SERVICE_TIMEOUT) -> tuple[bool, str]:
-        """Run one of ``REQUESTS`` on the current room after what is queued; returns
-        (success, JSON text or reason). ``suggest`` answers proposals and changes nothing."""
+        """Run one of ``REQUESTS`` on the current room; returns (success, JSON text or
+        reason). ``suggest`` answers proposals and changes nothing."""
         if kind not in REQUESTS:
             raise ValueError(f'unknown request {kind!r}')
         with self._lock:
             if self._closing:
                 return False, 'the node is shutting down'
             # The load policy: a bounded wait, never a queue that grows with the callers.
-            # Each waiting call holds one of the executor's threads; past ``max_pending`` the
-            # caller learns at once that it should call again.
-            waiting = self._pending
-            busy = waiting >= self.config.max_pending
+            # Each waiting call holds one of the executor's threads; when ``max_pending``
+            # calls would be served before this one, the caller learns at once that it should
+            # call again. Only those count: a reset is not turned away because generates
+            # wait, since it overtakes them.
+            ahead = sum(1 for j in self._calls if RANK[j.kind] <= RANK[kind])
+            busy = ahead >= self.config.max_pending
             if not busy:
-                self._pending += 1
-                job = _Job(kind, self._epoch)
-                self._queue.put(job)     # under the lock: close() either drains it or was first
+                job = self._queue(kind)     # under the lock: close() either drains it or was first
+                self._calls.append(job)
         if busy:
             self._set_status(increment='requests_busy')
-            return False, (f'busy: {waiting} requests are already waiting for the synthesis '
-                           f'worker (max_pending); call again shortly')
+            return False, (f'busy: {ahead} requests are already waiting for the synthesis '
+                           f'worker ahead of this one (max_pending); call again shortly')
         try:
             if not job.done.wait(timeout):
                 job.abandoned = True
@@ -358,7 +382,14 @@ class SceneServer:
             return job.ok, job.message
         finally:
             with self._lock:
-                self._pending -= 1
+                self._calls.remove(job)
+
+    def _queue(self, kind: str, **what) -> _Job:
+        """A new job for the worker; the caller holds the lock."""
+        job = _Job(kind, self._epoch, next(self._arrivals), time.monotonic(), **what)
+        self._jobs.append(job)
+        self._wake.notify()
+        return job
 
     @property
     def next_seed(self) -> int:
@@ -377,33 +408,73 @@ class SceneServer:
         with self._lock:
             self._closing = True
             self._epoch += 1               # cancels the synthesis under way
-        while True:
-            try:
-                job = self._queue.get_nowait()
-            except queue.Empty:
-                break
-            if job is not None:
-                job.ok, job.message = False, 'the node is shutting down'
-                job.done.set()
-        self._queue.put(None)
+            waiting, self._jobs = self._jobs, []
+            self._wake.notify_all()
+        for job in waiting:
+            job.ok, job.message = False, 'the node is shutting down'
+            job.done.set()
         self._worker.join(timeout)
 
     # ---- the worker -----------------------------------------------------------------------
     def _run(self) -> None:
         while True:
-            job = self._queue.get()
+            with self._lock:
+                while not self._jobs and not self._closing:
+                    self._wake.wait()
+                if self._closing:
+                    return
+                job = self._take(short_only=False)
+            self._serve(job)
+
+    def _take(self, short_only: bool, before: int | None = None) -> _Job | None:
+        """The queued job to serve next, removed from the queue (the caller holds the lock).
+        With ``short_only``, only a short call that is next anyway and arrived before
+        ``before``; else None."""
+        if not self._jobs:
+            return None
+        now = time.monotonic()
+
+        def order(j: _Job) -> tuple[int, int]:
+            rank = RANK[j.kind]
+            if rank > SHORT and now - j.queued >= PROMOTE_AFTER:
+                rank = SHORT
+            return rank, j.seq
+        job = min(self._jobs, key=order)
+        if short_only and (RANK[job.kind] != SHORT or (before is not None and job.seq > before)):
+            return None
+        self._jobs.remove(job)
+        return job
+
+    def _serve(self, job: _Job) -> None:
+        try:
+            self._execute(job)
+        except Exception as e:   # a bug must not kill the worker: report it and go on
+            text = sentence(e) or type(e).__name__
+            job.ok, job.message = False, f'internal error in {job.kind}: {text}'
+            self._set_status(level=ERROR, message=job.message, last_error=job.message)
+            self._log('error', job.message)
+        finally:
+            self._set_status(busy=False)
+            job.done.set()
+
+    def _between(self, running: _Job) -> bool:
+        """Asked by a running ``generate`` before each insertion: true when a newer layout
+        superseded it. Else it first serves the short calls queued now (those that arrive
+        meanwhile wait for the next insertion, so the generate still moves on).
+
+        A generate starts from the empty room and only replaces the room at its end, so a
+        reset or an object inserted meanwhile is the same as one served just before it: the
+        short call need not wait for the whole room."""
+        with self._lock:
+            before = next(self._arrivals)
+        while not self._stale(running):
+            with self._lock:
+                job = self._take(short_only=True, before=before)
             if job is None:
-                return
-            try:
-                self._execute(job)
-            except Exception as e:   # a bug must not kill the worker: report it and go on
-                text = sentence(e) or type(e).__name__
-                job.ok, job.message = False, f'internal error in {job.kind}: {text}'
-                self._set_status(level=ERROR, message=job.message, last_error=job.message)
-                self._log('error', job.message)
-            finally:
-                self._set_status(busy=False)
-                job.done.set()
+                return False
+            self._serve(job)
+            self._set_status(busy=True)
+        return True
 
     def _stale(self, job: _Job) -> bool:
         return job.epoch != self._epoch
@@ -448,8 +519,11 @@ class SceneServer:
                 job.ok = True
                 job.message = _json({'seed': seed, 'objects': [o.to_dict() for o in found]})
                 return
-            start = Scene(base.room, []) if job.kind == 'generate' else base
-            result = synth.complete(start, seed, cancel=lambda: self._stale(job))
+            if job.kind == 'generate':
+                result = synth.complete(Scene(base.room, []), seed,
+                                        cancel=lambda: self._between(job))
+            else:
+                result = synth.complete(base, seed, cancel=lambda: self._stale(job))
         except SynthesisCancelled:
             self._supersede(job)
             return

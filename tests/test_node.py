@@ -168,6 +168,23 @@ def test_services_reset_next_object_and_generate(node):
     _objects_agree(scene, markers, poses)
 
 
+def test_a_reset_sent_behind_two_generates_is_answered_before_them(node):
+    _furnish(node)
+    client = node.client
+    sent = {'generate 1': client.call_async('generate'),
+            'generate 2': client.call_async('generate'),
+            'reset': client.call_async('reset')}
+    answered = []
+
+    def all_answered():
+        answered.extend(k for k, f in sent.items() if f.done() and k not in answered)
+        return len(answered) == len(sent)
+    client.spin_until(all_answered, 60.0, 'answers')
+    assert all(f.result().success for f in sent.values()), [f.result() for f in sent.values()]
+    # The second generate waits for the first, the reset for one insertion at most.
+    assert answered.index('reset') < answered.index('generate 2'), answered
+
+
 BAD_LAYOUTS = {
     'does not parse': ('{"room_type": "bedroom", "floor": [[0, 0]', 'JSON'),
     'breaks the schema': (json.dumps({'room_type': 'bedroom', 'wall_height': 2.5}), 'floor'),
@@ -550,6 +567,40 @@ def test_a_bad_start_up_parameter_stops_the_node_in_one_sentence(tmp_path):
     r = _start_and_wait(tmp_path, {'location_temperature': -3.0})
     assert r.returncode == 1 and 'location_temperature' in r.stderr
     assert 'Traceback' not in r.stderr
+
+
+def test_fast_dds_frees_large_messages_unless_the_user_configured_it(monkeypatch, tmp_path):
+    # rmw_fastrtps kept every payload at the largest size it had held: refused megabyte
+    # layouts left their buffers in the node (issue 12's memory target).
+    from scene_synth_ros import node as node_module
+    monkeypatch.chdir(tmp_path)
+
+    def environment(**values):
+        for k in (*node_module._FASTDDS_SETTINGS, 'RMW_IMPLEMENTATION'):
+            monkeypatch.delenv(k, raising=False)
+        for k, v in values.items():
+            monkeypatch.setenv(k, v)
+    environment()
+    profile = node_module.steady_middleware()
+    try:
+        assert os.environ['FASTRTPS_DEFAULT_PROFILES_FILE'] == str(profile)
+        assert os.environ['RMW_FASTRTPS_USE_QOS_FROM_XML'] == '1'
+        ns = '{http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles}'
+        root = ET.parse(profile).getroot()
+        assert [e.text for e in root.iter(f'{ns}historyMemoryPolicy')] == ['DYNAMIC'] * 2
+        assert [e.text for e in root.iter(f'{ns}kind')] == ['SYNCHRONOUS']
+    finally:
+        profile.unlink()
+    for mine in ({'RMW_FASTRTPS_USE_QOS_FROM_XML': '0'},
+                 {'FASTRTPS_DEFAULT_PROFILES_FILE': str(tmp_path / 'mine.xml')},
+                 {'RMW_IMPLEMENTATION': 'rmw_cyclonedds_cpp'}):
+        environment(**mine)
+        assert node_module.steady_middleware() is None
+        assert dict(os.environ).items() >= mine.items()
+    environment()
+    (tmp_path / 'DEFAULT_FASTRTPS_PROFILES.xml').write_text('<dds/>')
+    assert node_module.steady_middleware() is None
+    assert 'FASTRTPS_DEFAULT_PROFILES_FILE' not in os.environ
 
 
 def test_the_node_logs_every_severity_and_any_text_from_one_place():

@@ -3,9 +3,11 @@ from __future__ import annotations
 
 import json
 import threading
+import time
 
 import pytest
 
+from scene_synth_ros import server as server_module
 from scene_synth_ros.networks.bundle import BundleError
 from scene_synth_ros.paths import examples_dir, weights_dir
 from scene_synth_ros.schema import parse_room_layout, parse_scene
@@ -313,6 +315,147 @@ def test_close_answers_every_waiting_call_at_once(server):
     assert not any(t.is_alive() for t in callers)
     assert any(m == 'the node is shutting down' for _, m in answers), answers
     assert server.request('reset') == (False, 'the node is shutting down')
+
+
+class Calls:
+    """Service calls made from threads. The order the worker served them in is the order of
+    ``Recorder.served``: a calling thread may wake up later than the next call's."""
+
+    def __init__(self, srv):
+        self.srv = srv
+        self.answers = []           # (label, success, message)
+        self.threads = []
+
+    def start(self, label, kind):
+        def call():
+            ok, message = self.srv.request(kind)
+            self.answers.append((label, ok, message))
+        t = threading.Thread(target=call)
+        self.threads.append(t)
+        t.start()
+
+    def queued(self, n):
+        """Wait until ``n`` jobs are queued for the worker."""
+        deadline = time.monotonic() + 30
+        while len(self.srv._jobs) < n:
+            assert time.monotonic() < deadline, f'{len(self.srv._jobs)} queued, not {n}'
+            time.sleep(0.005)
+
+    def join(self):
+        """Wait for every call; their answers by label."""
+        for t in self.threads:
+            t.join(60)
+        assert not any(t.is_alive() for t in self.threads)
+        return {label: (ok, message) for label, ok, message in self.answers}
+
+
+def _held_after_one_room(srv):
+    """A room served, then the worker held in the publisher of a ``next_object``:
+    (the calls, the event releasing the worker)."""
+    assert srv.submit_layout(LAYOUT)
+    srv.rec.wait(1)
+    entered, release = _hold_worker(srv)
+    calls = Calls(srv)
+    calls.start('held', 'next_object')
+    assert entered.wait(30)
+    return calls, release
+
+
+def test_short_calls_overtake_queued_generates_in_arrival_order(server):
+    calls, release = _held_after_one_room(server)
+    for label, kind in (('generate 1', 'generate'), ('generate 2', 'generate'),
+                        ('reset', 'reset'), ('next_object', 'next_object')):
+        calls.start(label, kind)
+        calls.queued(len(calls.threads) - 1)
+    release.set()
+    answers = calls.join()
+    assert all(ok for ok, _ in answers.values()), answers
+    assert [s.source for s in server.rec.served[1:]] == [
+        'next_object', 'reset', 'next_object', 'generate', 'generate']
+    first, second = (json.loads(answers[f'generate {k}'][1])['seed'] for k in (1, 2))
+    assert first < second
+
+
+def test_a_generate_that_waited_long_is_no_longer_overtaken(server, monkeypatch):
+    monkeypatch.setattr(server_module, 'PROMOTE_AFTER', 0.0)     # every one waited long
+    calls, release = _held_after_one_room(server)
+    for label, kind in (('generate 1', 'generate'), ('generate 2', 'generate'),
+                        ('reset', 'reset')):
+        calls.start(label, kind)
+        calls.queued(len(calls.threads) - 1)
+    release.set()
+    assert all(ok for ok, _ in calls.join().values())
+    # The reset came after both generates: it waits for the first (not even served between
+    # its insertions, since the second is ahead of it) and then overtakes only the running
+    # one, between two of its insertions.
+    assert [s.source for s in server.rec.served[1:]] == [
+        'next_object', 'generate', 'reset', 'generate']
+
+
+def test_short_calls_are_served_between_insertions_of_a_running_generate(server):
+    server.submit_layout(LAYOUT)
+    server.rec.wait(1)
+    server.reconfigure({'seed': 40})
+    # Hold the generate before its second insertion while calls arrive.
+    complete, entered, release = server._synth.complete, threading.Event(), threading.Event()
+
+    def held_complete(scene, seed, cancel=None):
+        asked = []
+
+        def held_cancel():
+            asked.append(1)
+            if len(asked) == 2:
+                entered.set()
+                release.wait(30)
+            return cancel()
+        return complete(scene, seed, held_cancel)
+    server._synth.complete = held_complete
+    calls = Calls(server)
+    calls.start('generate', 'generate')
+    assert entered.wait(30)
+    calls.start('reset', 'reset')
+    calls.start('next_object', 'next_object')
+    calls.queued(2)
+    release.set()
+    assert all(ok for ok, _ in calls.join().values())
+    assert [s.source for s in server.rec.served[1:]] == ['reset', 'next_object', 'generate']
+    generated = server.rec.served[-1]
+    assert generated.seed == 40 and server.scene.to_dict() == generated.scene.to_dict()
+    # The calls served meanwhile took seeds of their own and left the room it furnishes alone:
+    # the same seed again, with nothing in between, gives the same room.
+    server._synth.complete = complete
+    server.reconfigure({'seed': 40})
+    assert server.request('generate')[0]
+    assert server.rec.wait(5).scene.objects == generated.scene.objects
+
+
+def test_busy_counts_only_the_calls_served_before_it(server):
+    server.reconfigure({'max_pending': 2})
+    calls, release = _held_after_one_room(server)
+    calls.start('generate', 'generate')
+    calls.queued(1)
+    ok, message = server.request('generate')        # two calls ahead: busy
+    assert not ok and message.startswith('busy: 2 requests are already waiting')
+    calls.start('reset', 'reset')                    # one ahead (held): it waits
+    calls.queued(2)
+    ok, message = server.request('next_object')      # two ahead: busy
+    assert not ok and message.startswith('busy: 2 requests')
+    assert server.status.requests_busy == 2
+    release.set()
+    assert set(calls.join()) == {'held', 'generate', 'reset'}
+    assert [s.source for s in server.rec.served[1:]] == ['next_object', 'reset', 'generate']
+
+
+def test_a_layout_answers_the_calls_queued_before_it_at_once(server):
+    calls, release = _held_after_one_room(server)
+    calls.start('generate', 'generate')
+    calls.queued(1)
+    assert server.submit_layout(LAYOUT)
+    calls.threads[1].join(30)           # answered while the worker is still held
+    assert calls.answers == [('generate', False, 'superseded by a newer room layout')]
+    release.set()
+    calls.join()
+    assert server.rec.wait(3).source == 'room_layout'
 
 
 def test_a_failing_logger_does_not_stop_the_worker():
