@@ -354,6 +354,14 @@ def main(args: list[str] | None = None) -> int:
         # Answer the calls waiting for the worker first: their callbacks hold the executor's
         # threads, which its shutdown waits for.
         node.server.close(timeout=1.5)
+        # Then let the callbacks just answered send their responses before the node goes:
+        # one still sending when it is destroyed fails with "cannot use Destroyable", which
+        # Python prints at exit as an exception never retrieved. Executor.shutdown is meant
+        # to wait for them, but in Jazzy's rclpy it sets its flag before testing it and
+        # returns at once, so wait on the executor's own count of work in progress.
+        work = getattr(executor, '_work_tracker', None)
+        if work is not None:
+            work.wait(2.0)
         executor.shutdown(timeout_sec=2.0)
     except StartupError as e:
         print(f'{NODE_NAME}: cannot start: {e}', file=sys.stderr)
