@@ -70,6 +70,7 @@ import tempfile
 import time
 from typing import Callable, Iterator
 
+from . import catalog
 from .categories import resolve_room_type
 from .errors import SceneSynthError, quoted, sentence
 from .files import write_atomic
@@ -237,14 +238,15 @@ class Source:
         return RoomJob(job.index, job.seed, job.layout, data=data, problem=problem)
 
 
-def scene_from_document(data: bytes):
+def scene_from_document(data: bytes, models=None):
     """A scene or room layout (JSON or YAML) as a validated Scene, as ``schema.load_scene``
-    reads a file."""
+    reads a file; model ids are those of ``models`` (a ``catalog.Catalog``, default the
+    procedural one)."""
     from .schema import parse_room_layout, parse_scene, read_payload
     d = read_payload(data)
     if isinstance(d, dict) and 'room' not in d:
-        return parse_room_layout(d)
-    return parse_scene(d)
+        return parse_room_layout(d, models)
+    return parse_scene(d, models)
 
 
 # ---- workers ---------------------------------------------------------------------------------
@@ -324,7 +326,7 @@ class Worker:
             from .corpus.generate import empty_room
             scene = Scene(empty_room(job.room_type, job.shell_seed, job.index), [])
         else:
-            scene = scene_from_document(job.data)
+            scene = scene_from_document(job.data, catalog.load(self.spec.synthesis.catalog))
         furnish = self.synth.generate if self.spec.mode == 'generate' else self.synth.complete
         result = furnish(scene, job.seed)
         files.update(self.files(job.name, result.scene))
@@ -343,6 +345,7 @@ class Worker:
         so that a reader who finds a file finds what it names."""
         from . import export
         from .schema import dump_scene
+        models = catalog.load(self.spec.synthesis.catalog)
         shared, own = {}, {}
         with tempfile.TemporaryDirectory(prefix='scene-synth-batch-') as tmp:
             root = Path(tmp)
@@ -352,7 +355,7 @@ class Worker:
                 save_png(scene, root / THUMBNAILS / f'{name}.png', title=name, **THUMBNAIL)
             for fmt in self.spec.exports:
                 export.write(scene, fmt, root / fmt / f'{name}{export.FORMATS[fmt].suffix}',
-                             root / fmt / MESHES)
+                             root / fmt / MESHES, catalog=models)
             primary = set(output_files(name, self.spec.png, self.spec.exports))
             for p in sorted(root.rglob('*')):
                 rel = p.relative_to(root).as_posix()
@@ -365,7 +368,7 @@ class Worker:
                     own[rel] = p.read_bytes()
             for rel in sorted(primary - {f'{SCENES}/{name}.json'}):
                 own[rel] = (root / rel).read_bytes()
-        own[f'{SCENES}/{name}.json'] = (dump_scene(scene) + '\n').encode('utf-8')
+        own[f'{SCENES}/{name}.json'] = (dump_scene(scene, models) + '\n').encode('utf-8')
         return {**shared, **own}
 
 

@@ -19,6 +19,7 @@ from scene_synth_ros.categories import CATEGORIES
 from scene_synth_ros.errors import MAX_SENTENCE, CatalogError
 from scene_synth_ros.meshes import build_parts, variant_for
 from scene_synth_ros.scene import PlacedObject
+from scene_synth_ros.schema import load_scene
 from scene_synth_ros.user_catalog import build_catalog, read_catalog, write_catalog
 from scene_synth_ros.user_catalog.mesh import nearest_material
 
@@ -536,8 +537,17 @@ def test_catalog_build_generate_and_export_commands(cli, real_set, tmp_path):
     if used & set(REAL):        # a scene of the user's models needs their catalog to load
         r = cli('export', scene, '--gltf', tmp_path / 'x.glb', ok=False)
         assert r.returncode == 2 and 'is not a catalog model id' in r.stderr
-    r = cli('generate', '--catalog', out, '-n', '2', '--out', tmp_path / 'batch', ok=False)
-    assert r.returncode == 2 and '--catalog furnishes one room at a time' in r.stderr
+    # A batch: scenes that load with the catalog, and exports that draw the user's meshes.
+    batch = tmp_path / 'batch'
+    cli('generate', '--room-type', 'bedroom', '--catalog', out, '-n', '3', '--workers', '1',
+        '--export', 'gltf', '--out', batch)
+    models = catalog.load(out)
+    scenes = [load_scene(p, models) for p in sorted((batch / 'scenes').glob('*.json'))]
+    assert len(scenes) == 3
+    own = {o.model_id for s in scenes for o in s.objects} & set(REAL)
+    assert own                                   # the user's beds, stands, wardrobes, desks
+    assert all(o.category == models.get(o.model_id).category for s in scenes for o in s.objects)
+    assert len(list((batch / 'gltf').glob('*.glb'))) == 3
 
 
 def test_catalog_build_bad_input_is_one_sentence(cli, tmp_path):

@@ -215,9 +215,6 @@ def _one_room_only(args) -> None:
 def _cmd_batch(args, mode: str) -> int:
     """``generate``/``complete`` over many rooms (``batch.run_batch``)."""
     from ..batch import BatchConfig, Source, run_batch
-    if args.catalog:
-        raise UserError('--catalog furnishes one room at a time for now; a batch (-n, '
-                        '--layouts, a directory) writes procedural model ids only')
     if not args.out:
         raise UserError('a batch needs --out DIR, the directory its rooms go to')
     if args.png not in (None, True):
