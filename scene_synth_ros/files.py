@@ -10,12 +10,15 @@ Windows (``os.replace``).
 from __future__ import annotations
 
 from contextlib import contextmanager
+import json
 import os
 from pathlib import Path
 import re
 import shutil
 import tempfile
-from typing import Iterator, Sequence
+from typing import Any, Iterator, Sequence
+
+from .errors import quoted
 
 
 @contextmanager
@@ -49,3 +52,19 @@ def safe_name(text: str) -> str:
     are their own names, and different texts never share a name (``-`` occurs only in these
     escapes, so a name decodes back to exactly one text)."""
     return re.sub(r'[^A-Za-z0-9_]', lambda m: f'-{ord(m.group()):x}-', text)
+
+
+def read_json(path: str | os.PathLike, what: str, error: type[Exception],
+              missing: str = '') -> Any:
+    """The JSON document in ``path``, or ``error`` with one sentence naming the file as
+    ``what`` (e.g. ``'the catalog'``): it does not exist (followed by ``missing``, a hint of
+    where one comes from), cannot be read, or is not JSON."""
+    name = quoted(str(path), 80)
+    try:
+        return json.loads(Path(path).read_text(encoding='utf-8'))
+    except FileNotFoundError:
+        raise error(f'{what} {name} does not exist{missing}') from None
+    except (OSError, UnicodeDecodeError) as e:
+        raise error(f'cannot read {what} {name}: {getattr(e, "strerror", None) or e}') from None
+    except json.JSONDecodeError as e:
+        raise error(f'{what} {name} is not valid JSON: {e.msg} at line {e.lineno}') from None

@@ -8,7 +8,7 @@ import pytest
 
 from scene_synth_ros import catalog
 from scene_synth_ros.export import export_sdf
-from scene_synth_ros.files import safe_name, write_atomic, writing_together
+from scene_synth_ros.files import read_json, safe_name, write_atomic, writing_together
 from scene_synth_ros.scene import PlacedObject, Room, Scene
 
 
@@ -68,3 +68,20 @@ def test_files_written_together_arrive_in_the_order_given(tmp_path, monkeypatch)
         (tmp / 'm.mtl').write_text('mtl')
     assert moved == ['m.mtl', 'm.obj']
     assert sorted(p.name for p in tmp_path.iterdir()) == ['m.mtl', 'm.obj']
+
+
+def test_read_json_names_the_file_in_one_sentence(tmp_path):
+    class Bad(ValueError):
+        pass
+    (tmp_path / 'ok.json').write_text('{"a": [1, 2]}')
+    assert read_json(tmp_path / 'ok.json', 'the table', Bad) == {'a': [1, 2]}
+    with pytest.raises(Bad, match=r"^the table '.*gone.json' does not exist \(build one\)$"):
+        read_json(tmp_path / 'gone.json', 'the table', Bad, ' (build one)')
+    (tmp_path / 'bad.json').write_text('{"a": 1,\n oops}')
+    with pytest.raises(Bad, match='is not valid JSON: .* at line 2$'):
+        read_json(tmp_path / 'bad.json', 'the table', Bad)
+    (tmp_path / 'latin.json').write_bytes(b'{"a": "\xe9"}')
+    with pytest.raises(Bad, match='^cannot read the table'):
+        read_json(tmp_path / 'latin.json', 'the table', Bad)
+    with pytest.raises(Bad, match='^cannot read the table'):
+        read_json(tmp_path, 'the table', Bad)             # a folder

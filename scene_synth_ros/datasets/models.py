@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import DatasetError
+from ..files import read_json
 
 CATEGORY_COLUMNS = ('category', 'fine_grained_class')
 
@@ -89,14 +90,7 @@ class AssetBoxes:
 
     def __init__(self, path: str | Path):
         self.path = Path(path)
-        try:
-            data = json.loads(self.path.read_text(encoding='utf-8'))
-        except (OSError, UnicodeDecodeError) as e:
-            raise DatasetError(f'cannot read the asset sizes {self.path}: '
-                               f'{getattr(e, "strerror", None) or e}') from None
-        except json.JSONDecodeError as e:
-            raise DatasetError(f'the asset sizes {self.path} are not valid JSON: {e.msg} at '
-                               f'line {e.lineno}') from None
+        data = read_json(self.path, 'the asset table', DatasetError)
         if not isinstance(data, dict):
             raise DatasetError(f'the asset sizes {self.path} must map asset ids to '
                                f'{{objectType, boundingBox}}')

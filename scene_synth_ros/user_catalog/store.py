@@ -15,7 +15,6 @@ JSON, so that using a catalog never re-reads its meshes::
 """
 from __future__ import annotations
 
-import json
 import math
 import os
 from pathlib import Path
@@ -26,7 +25,7 @@ import numpy as np
 from .. import catalog
 from ..catalog import Catalog, UserModel
 from ..errors import CatalogError, quoted
-from ..files import write_atomic
+from ..files import read_json, write_atomic
 from ..schema import format_json
 from .axes import parse_axis
 from .measure import placement
@@ -67,17 +66,8 @@ def read_catalog(path: str | Path) -> Catalog:
     """The Catalog of a catalog file (the procedural catalog under the user's models)."""
     path = Path(path)
     name = quoted(str(path), 80)
-    try:
-        data = json.loads(path.read_text(encoding='utf-8'))
-    except FileNotFoundError:
-        raise CatalogError(f'the catalog {name} does not exist (`scene-synth catalog build` '
-                           f'writes one)') from None
-    except (OSError, UnicodeDecodeError) as e:
-        raise CatalogError(f'cannot read the catalog {name}: '
-                           f'{getattr(e, "strerror", None) or e}') from None
-    except json.JSONDecodeError as e:
-        raise CatalogError(f'the catalog {name} is not valid JSON: {e.msg} at line '
-                           f'{e.lineno}') from None
+    data = read_json(path, 'the catalog', CatalogError,
+                     ' (`scene-synth catalog build` writes one)')
     if not isinstance(data, dict) or data.get('format') != FORMAT:
         raise CatalogError(f'{name} is not a catalog written by `scene-synth catalog build`')
     if data.get('version') != VERSION or not isinstance(data.get('models'), list):
