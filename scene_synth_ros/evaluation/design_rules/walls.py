@@ -183,29 +183,27 @@ def union_length(intervals: list[tuple[float, float]]) -> float:
 
 
 # ---- the rules ---------------------------------------------------------------------------
-def _back_gaps(scene: Scene) -> np.ndarray:
+def _back_gaps(scene: Scene) -> tuple[list[PlacedObject], np.ndarray]:
+    """The room's pieces of wall furniture and each one's back gap."""
     pieces = [o for o in scene.first_tier if o.category in WALL_FURNITURE]
     if not pieces:
-        return np.zeros(0)
-    return back_gaps(pieces, wall_runs(scene.room))
+        return pieces, np.zeros(0)
+    return pieces, back_gaps(pieces, wall_runs(scene.room))
 
 
 def wall_contact_verdicts(scene: Scene) -> dict[str, bool]:
     """Whether each piece of wall furniture (by id) keeps ``wall_contact``."""
-    pieces = [o for o in scene.first_tier if o.category in WALL_FURNITURE]
-    if not pieces:
-        return {}
-    gaps = back_gaps(pieces, wall_runs(scene.room))
+    pieces, gaps = _back_gaps(scene)
     return {o.id: bool(g <= WALL_CONTACT) for o, g in zip(pieces, gaps, strict=True)}
 
 
 def measure_wall_contact(scene: Scene) -> tuple[int, int]:
-    gaps = _back_gaps(scene)
-    return int(np.sum(gaps <= WALL_CONTACT)), len(gaps)
+    verdicts = wall_contact_verdicts(scene)
+    return sum(verdicts.values()), len(verdicts)
 
 
 def measure_wall_near_miss(scene: Scene) -> tuple[int, int]:
-    gaps = _back_gaps(scene)
+    _, gaps = _back_gaps(scene)
     return int(np.sum((gaps <= WALL_CONTACT) | (gaps >= NEAR_MISS))), len(gaps)
 
 
