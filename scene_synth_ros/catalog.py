@@ -3,7 +3,9 @@
 The procedural catalog (the default): variants span the category's size ranges on a Latin
 hypercube, so that small, large, low, tall, narrow and deep models all exist. Their
 dimensions are a pure function of the category's ranges (no randomness at run time), which
-keeps model ids stable across machines. Meshes are built on demand by
+keeps model ids stable across machines. A room type a data set defines
+(``categories.define_room_types``) has variants of its own categories, spanning the data's
+size ranges, with ids that name the room type (``kitchen__fridge_03``). Meshes are built on demand by
 ``scene_synth_ros.meshes``. The module-level functions (``variants``, ``get``, ``nearest``,
 ``ranked``) are this catalog's.
 
@@ -22,7 +24,7 @@ import zlib
 
 import numpy as np
 
-from .categories import CATEGORIES
+from .categories import CATEGORIES, CategoryInfo, defined_room_type, room_spec
 from .scene import Sized
 
 VARIANTS_PER_CATEGORY = 8
@@ -42,10 +44,21 @@ def slug(category: str) -> str:
     return category.replace(' ', '_')
 
 
-@lru_cache(maxsize=None)
-def variants(category: str) -> tuple[ModelVariant, ...]:
-    """The catalog models of ``category``, from smallest to largest width."""
-    info = CATEGORIES[category]
+DATA_SET_MARK = '__'          # between the room type and the category in a data set's ids
+
+
+def variants(category: str, room_type: str | None = None) -> tuple[ModelVariant, ...]:
+    """The catalog models of ``category``, from smallest to largest width: those of the
+    data set that defines ``room_type`` if one does, else the paper's category."""
+    if room_type is not None and defined_room_type(room_type):
+        spec = room_spec(room_type)
+        return _variants(spec.info(category), f'{slug(spec.room_type)}{DATA_SET_MARK}')
+    return _variants(CATEGORIES[category], '')
+
+
+@lru_cache(maxsize=512)
+def _variants(info: CategoryInfo, prefix: str) -> tuple[ModelVariant, ...]:
+    category = info.name
     n = VARIANTS_PER_CATEGORY
     # A per-category permutation pairs widths with depths and heights so that the set
     # covers the box of ranges instead of its diagonal; crc32 keeps it stable everywhere.
@@ -58,7 +71,7 @@ def variants(category: str) -> tuple[ModelVariant, ...]:
         size = tuple(round(float(lo + (hi - lo) * t), 3) for (lo, hi), t in (
             (info.width, t_w[k]), (info.depth, (t_d[k] + 0.5) / n),
             (info.height, (t_h[k] + 0.5) / n)))
-        out.append(ModelVariant(f'{slug(category)}_{k:02d}', category, size, k % 3))
+        out.append(ModelVariant(f'{prefix}{slug(category)}_{k:02d}', category, size, k % 3))
     return tuple(out)
 
 
@@ -71,7 +84,15 @@ def get(model_id: str) -> ModelVariant:
     try:
         return _by_id()[model_id]
     except KeyError:
-        raise KeyError(f'unknown model id {model_id!r}') from None
+        pass
+    rt, mark, _ = model_id.partition(DATA_SET_MARK)
+    if mark and defined_room_type(rt.replace('_', ' ')):
+        spec = room_spec(rt.replace('_', ' '))
+        for name in spec.names:
+            for v in variants(name, spec.room_type):
+                if v.model_id == model_id:
+                    return v
+    raise KeyError(f'unknown model id {model_id[:80]!r}')
 
 
 def all_variants() -> list[ModelVariant]:
@@ -79,10 +100,11 @@ def all_variants() -> list[ModelVariant]:
 
 
 def nearest(category: str, width: float, depth: float,
-            candidates: tuple[ModelVariant, ...] | None = None) -> ModelVariant:
+            candidates: tuple[ModelVariant, ...] | None = None,
+            room_type: str | None = None) -> ModelVariant:
     """The variant whose footprint is closest to ``width`` x ``depth`` (relative error, so
     that a 5 cm miss counts more on a cup than on a bed)."""
-    pool = candidates if candidates is not None else variants(category)
+    pool = candidates if candidates is not None else variants(category, room_type)
     return min(pool, key=lambda v: footprint_distance(v, width, depth))
 
 
@@ -91,10 +113,11 @@ def footprint_distance(v: ModelVariant, width: float, depth: float) -> float:
 
 
 def ranked(category: str, width: float, depth: float,
-           candidates: tuple[ModelVariant, ...] | None = None) -> list[ModelVariant]:
+           candidates: tuple[ModelVariant, ...] | None = None,
+           room_type: str | None = None) -> list[ModelVariant]:
     """All variants of ``category`` (or ``candidates``) from the best footprint fit to the
     worst."""
-    pool = candidates if candidates is not None else variants(category)
+    pool = candidates if candidates is not None else variants(category, room_type)
     return sorted(pool, key=lambda v: footprint_distance(v, width, depth))
 
 
@@ -142,8 +165,9 @@ class Catalog:
         """Those of ``categories`` that no user model covers (procedural models there)."""
         return [c for c in categories if c not in self._by_category]
 
-    def variants(self, category: str) -> tuple[ModelVariant, ...]:
-        return self._by_category.get(category) or variants(category)
+    def variants(self, category: str, room_type: str | None = None
+                 ) -> tuple[ModelVariant, ...]:
+        return self._by_category.get(category) or variants(category, room_type)
 
     def user_model(self, model_id: str) -> UserModel | None:
         return self.user.get(model_id)
@@ -155,11 +179,13 @@ class Catalog:
     def all_variants(self) -> list[ModelVariant]:
         return [v for c in CATEGORIES for v in self.variants(c)]
 
-    def nearest(self, category: str, width: float, depth: float) -> ModelVariant:
-        return nearest(category, width, depth, self.variants(category))
+    def nearest(self, category: str, width: float, depth: float,
+                room_type: str | None = None) -> ModelVariant:
+        return nearest(category, width, depth, self.variants(category, room_type))
 
-    def ranked(self, category: str, width: float, depth: float) -> list[ModelVariant]:
-        return ranked(category, width, depth, self.variants(category))
+    def ranked(self, category: str, width: float, depth: float,
+               room_type: str | None = None) -> list[ModelVariant]:
+        return ranked(category, width, depth, self.variants(category, room_type))
 
 
 PROCEDURAL = Catalog()

@@ -11,11 +11,13 @@ object's front (local y), ``depth`` from back to front (local x, the front faces
 """
 from __future__ import annotations
 
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from functools import lru_cache
 import math
+from typing import Any, Iterable, Iterator
 
-from .errors import UnknownRoomType
+from .errors import RoomTypeConflict, UnknownRoomType
 
 ROOM_TYPES = ('bedroom', 'living', 'office', 'bathroom')
 
@@ -258,28 +260,120 @@ class RoomTypeSpec:
         """Categories by decreasing importance, the paper's order for the category module."""
         return tuple(c.name for c in sorted(self.categories, key=lambda c: -c.importance))
 
+    def info(self, name: str) -> CategoryInfo:
+        """What this room type knows of category ``name`` (its tier, sizes, parents)."""
+        return self[name].info
+
     def supports(self, child: str) -> tuple[str, ...]:
         """First-tier categories of this room type that can hold ``child``."""
-        return tuple(p for p in CATEGORIES[child].supported_by if p in self)
+        return tuple(p for p in self.info(child).supported_by if p in self)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The spec as plain JSON data (what a weights bundle carries); ``from_dict``
+        reads it back equal."""
+        return {'room_type': self.room_type, 'rooms': self.rooms, 'size_cap': self.size_cap,
+                'doors_per_room': self.doors_per_room,
+                'windows_per_room': self.windows_per_room,
+                'categories': [{'name': c.name, 'count': c.count, 'frequency': c.frequency,
+                                'importance': c.importance, 'tier': c.info.tier,
+                                'width': list(c.info.width), 'depth': list(c.info.depth),
+                                'height': list(c.info.height),
+                                'supported_by': list(c.info.supported_by),
+                                'against_wall': c.info.against_wall,
+                                'description': c.info.description}
+                               for c in self.categories]}
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> 'RoomTypeSpec':
+        cats = tuple(RoomCategorySpec(
+            CategoryInfo(str(c['name']), str(c['tier']), _pair(c['width']), _pair(c['depth']),
+                         _pair(c['height']), tuple(map(str, c['supported_by'])),
+                         bool(c['against_wall']), str(c.get('description', ''))),
+            int(c['count']), float(c['frequency']), float(c['importance']))
+            for c in d['categories'])
+        return cls(str(d['room_type']), int(d['rooms']), float(d['size_cap']), cats,
+                   float(d['doors_per_room']), float(d['windows_per_room']))
+
+
+def _pair(v) -> tuple[float, float]:
+    lo, hi = v
+    return (float(lo), float(hi))
 
 
 # Other names accepted for a room type (after lower-casing, '_' read as ' ').
 ROOM_TYPE_ALIASES = {'living room': 'living', 'livingroom': 'living', 'bed room': 'bedroom'}
 
 
+# Room types a data set defines (``define_room_types``): the category sets of the weights
+# in use when they were trained on imported data. A name here shadows the paper's type of
+# the same name; the paper's table stays the description of the embedded corpus.
+_DEFINED: dict[str, RoomTypeSpec] = {}
+
+
+def room_types() -> tuple[str, ...]:
+    """Every room type known in this process: the paper's four, then those defined."""
+    return ROOM_TYPES + tuple(rt for rt in _DEFINED if rt not in ROOM_TYPES)
+
+
 def resolve_room_type(name: str) -> str:
     """Canonical room type for a user-given name ('living room' -> 'living')."""
     key = name.strip().lower().replace('_', ' ')
     key = ROOM_TYPE_ALIASES.get(key, key)
-    if key not in ROOM_TYPES:
-        raise UnknownRoomType(f'unknown room type {name!r}; expected one of '
-                              f'{", ".join(ROOM_TYPES)}')
+    if key not in ROOM_TYPES and key not in _DEFINED:
+        known = room_types()
+        raise UnknownRoomType(f'unknown room type {name[:80]!r}; expected one of '
+                              f'{", ".join(known)}')
     return key
 
 
-@lru_cache(maxsize=None)
 def room_spec(room_type: str) -> RoomTypeSpec:
+    """The category set of ``room_type``: a data set's where one is defined, else the
+    paper's table."""
     room_type = resolve_room_type(room_type)
+    return _DEFINED.get(room_type) or paper_spec(room_type)
+
+
+def defined_room_type(room_type: str) -> bool:
+    """Whether a data set defines ``room_type``'s category set in this process."""
+    return room_type in _DEFINED
+
+
+def define_room_types(specs: Iterable[RoomTypeSpec]) -> None:
+    """Make the category sets of ``specs`` (weights trained on a data set) the ones of
+    their room types in this process. A spec equal to the paper's changes nothing. A type
+    defined already with another category set is refused (``RoomTypeConflict``): two data
+    sets cannot share a room type's name in one process."""
+    specs = list(specs)
+    for spec in specs:                      # all checked before any is defined
+        current = _DEFINED.get(spec.room_type)
+        if current is not None and current != spec:
+            raise RoomTypeConflict(f'room type {spec.room_type!r} is already defined by '
+                                   f'another data set in this process; load the weights of '
+                                   f'one data set per process')
+    for spec in specs:
+        if spec.room_type in ROOM_TYPES and spec == paper_spec(spec.room_type):
+            continue
+        _DEFINED[spec.room_type] = spec
+
+
+@contextmanager
+def room_types_defined(specs: Iterable[RoomTypeSpec]) -> Iterator[None]:
+    """``define_room_types`` for the duration of a ``with`` block; the room types known
+    before come back after it."""
+    saved = dict(_DEFINED)
+    try:
+        _DEFINED.clear()
+        _DEFINED.update(saved)
+        define_room_types(specs)
+        yield
+    finally:
+        _DEFINED.clear()
+        _DEFINED.update(saved)
+
+
+@lru_cache(maxsize=None)
+def paper_spec(room_type: str) -> RoomTypeSpec:
+    """The category set of one of the paper's room types, from its table."""
     rooms = ROOMS_IN_TABLE[room_type]
     cats = []
     for name, count in TABLE_COUNTS[room_type].items():
@@ -289,6 +383,22 @@ def room_spec(room_type: str) -> RoomTypeSpec:
     arch = ARCHITECTURE_COUNTS[room_type]
     return RoomTypeSpec(room_type, rooms, ROOM_SIZE_CAP[room_type], tuple(cats),
                         arch['door'] / rooms, arch['window'] / rooms)
+
+
+def category_info(name: str, room_type: str | None = None) -> CategoryInfo:
+    """What is known of category ``name``: in ``room_type``'s category set when given
+    (a data set's categories live there), else in the paper's table. ``KeyError`` if
+    neither has it."""
+    if room_type is not None:
+        spec = room_spec(room_type)
+        if name in spec:
+            return spec.info(name)
+    if name in CATEGORIES:
+        return CATEGORIES[name]
+    for spec in _DEFINED.values():
+        if name in spec:
+            return spec.info(name)
+    raise KeyError(name)
 
 
 def kl_divergence(p: dict[str, float], q: dict[str, float], eps: float = 1e-6) -> float:

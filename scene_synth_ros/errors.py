@@ -55,6 +55,11 @@ class UnknownRoomType(SceneSynthError, ValueError):
     """A room type that is not one of ``categories.ROOM_TYPES`` (nor an alias of one)."""
 
 
+class RoomTypeConflict(SceneSynthError, ValueError):
+    """Weights whose room type has another category set than the one this process uses
+    (``categories.define_room_types``)."""
+
+
 class UnknownCategory(SceneSynthError, ValueError):
     """A category name that is not one of ``categories.CATEGORIES``."""
 

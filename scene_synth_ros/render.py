@@ -60,7 +60,7 @@ from typing import Iterable
 
 import numpy as np
 
-from .categories import ROOM_SIZE_CAP, resolve_room_type, room_spec
+from .categories import resolve_room_type, room_spec
 from .errors import SceneSynthError, number, with_article
 from .scene import Room, Scene
 
@@ -94,9 +94,15 @@ def channel_names(room_type: str) -> tuple[str, ...]:
     return FIXED_CHANNEL_NAMES + room_spec(room_type).names
 
 
-@lru_cache(maxsize=None)
 def _category_channels(room_type: str) -> dict[str, int]:
-    return {name: FIRST_CATEGORY + k for k, name in enumerate(room_spec(room_type).names)}
+    return _channels_of(room_spec(room_type).names)
+
+
+@lru_cache(maxsize=64)
+def _channels_of(names: tuple[str, ...]) -> dict[str, int]:
+    # Keyed by the category list, not the room type's name: a data set may define a type
+    # of the same name with other categories (categories.define_room_types).
+    return {name: FIRST_CATEGORY + k for k, name in enumerate(names)}
 
 
 def category_channel(room_type: str, category: str) -> int:
@@ -140,12 +146,13 @@ def room_frame_box(room: Room) -> RoomFrameBox:
     """The room measured in its frame's axes (see the module docstring)."""
     rt = resolve_room_type(room.room_type)
     yaw = room_axis_yaw(room)
-    axes = Frame((0.0, 0.0), yaw, ROOM_SIZE_CAP[rt], 1)     # the room's axes through the origin
+    cap = room_spec(rt).size_cap
+    axes = Frame((0.0, 0.0), yaw, cap, 1)     # the room's axes through the origin
     uv = axes.to_local(np.asarray(room.floor, dtype=float))
     lo, hi = uv.min(axis=0), uv.max(axis=0)
     centre = axes.to_world((lo + hi) / 2.0)
     return RoomFrameBox(rt, yaw, (float(centre[0]), float(centre[1])),
-                        (float(hi[0] - lo[0]), float(hi[1] - lo[1])), ROOM_SIZE_CAP[rt])
+                        (float(hi[0] - lo[0]), float(hi[1] - lo[1])), cap)
 
 
 class RoomDoesNotFit(SceneSynthError, ValueError):
@@ -198,7 +205,7 @@ class Frame:
         ignored) and rotated by ``yaw``: in it, world direction ``yaw`` is the image's +u
         (column) axis."""
         p = tuple(point)
-        return cls((p[0], p[1]), yaw, ROOM_SIZE_CAP[resolve_room_type(room_type)], resolution)
+        return cls((p[0], p[1]), yaw, room_spec(room_type).size_cap, resolution)
 
     # World <-> frame-local metres.
     def to_local(self, xy) -> np.ndarray:

@@ -35,7 +35,7 @@ import numpy as np
 import shapely
 
 from . import catalog
-from .categories import CATEGORIES, ROOM_TYPES, RoomTypeSpec, resolve_room_type, room_spec
+from .categories import CATEGORIES, ROOM_TYPES, RoomTypeSpec, resolve_room_type, room_spec, room_types
 from .errors import SceneSynthError, UnknownRoomType, number, quoted, with_article
 from .files import write_atomic
 from .limits import LimitExceeded, YamlError, check_tree, join, loads, loads_yaml
@@ -290,7 +290,7 @@ def _room_type(value: str, path: str) -> str:
     except UnknownRoomType:
         raise SceneValidationError(
             f'{path} {quoted(value)} is not a known room type (expected one of '
-            f'{", ".join(ROOM_TYPES)}, or an alias such as \'living room\')', path) from None
+            f'{", ".join(room_types())}, or an alias such as \'living room\')', path) from None
 
 
 def _check_floor(points: list[list[float]], prefix: str) -> list[tuple[float, float]]:
@@ -435,7 +435,7 @@ def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str,
         size = tuple(float(v) for v in d['size'])
         model_id = d.get('model_id')
         if model_id is None:
-            model_id = models.nearest(d['category'], size[0], size[1]).model_id
+            model_id = models.nearest(d['category'], size[0], size[1], spec.room_type).model_id
         objects.append(PlacedObject(str(d['id']), d['category'], model_id,
                                     tuple(float(v) for v in d['position']), float(d['yaw']),
                                     size, d.get('support')))
@@ -447,14 +447,14 @@ def _check_object(d: dict[str, Any], path: str, room: Room, spec: RoomTypeSpec,
     """One object dict's category, size, position and model id against the room."""
     category = d['category']
     cpath = _join(path, 'category')
-    if category not in CATEGORIES:
+    if category not in spec and category not in CATEGORIES:
         raise SceneValidationError(
             f'{cpath} {quoted(category)} is not a known category', cpath)
     if category not in spec:
         raise SceneValidationError(
             f'{cpath} {quoted(category)} is not a category of {with_article(room.room_type)} '
             f'({with_article(room.room_type)} may hold: {", ".join(spec.names)})', cpath)
-    info = CATEGORIES[category]
+    info = spec.info(category)
     w, dep, h = (float(v) for v in d['size'])
     if not info.size_is_plausible(w, dep, h, SIZE_SLACK):
         spath = _join(path, 'size')
@@ -495,7 +495,7 @@ def _check_support(items: list[dict[str, Any]], i: int, seen: dict[str, int], sp
     index) is another object that can hold it."""
     category = items[i]['category']
     support = items[i].get('support')
-    if CATEGORIES[category].tier == 'first':
+    if spec.info(category).tier == 'first':
         if support is not None:
             raise SceneValidationError(
                 f'{spath} must be absent because {with_article(category)} stands on the '

@@ -51,7 +51,7 @@ from .geometry import (
     overlaps_any,
     support_fraction,
 )
-from .networks.bundle import Bundle, bundle_path, load_bundle
+from .networks.bundle import Bundle, bundle_path, define_weights_room_types, load_bundle
 from .networks.category import category_probabilities
 from .networks.config import resolve_device
 from .networks.location import location_distribution, sample_pixel
@@ -149,7 +149,8 @@ def check_room_fits(room: Room) -> None:
     hold nothing)."""
     spec = room_spec(room.room_type)
     small = min((v for c in spec.categories if c.tier == 'first'
-                 for v in catalog.variants(c.name)), key=lambda v: v.width * v.depth)
+                 for v in catalog.variants(c.name, spec.room_type)),
+                key=lambda v: v.width * v.depth)
     short, long_ = sorted((small.width, small.depth))
     free = room.polygon
     for d in room.doors:
@@ -263,6 +264,9 @@ class Synthesizer:
             raise SynthesisError(str(e)) from None
         self._bundles: dict[str, Bundle] = {}
         self._renderers: dict[int, TopDownRenderer] = {}
+        # Weights trained on an imported data set define its room types here, before any
+        # layout of one is parsed.
+        self.room_types = define_weights_room_types(self.weights_dir)
 
     # ---- set-up ---------------------------------------------------------------------------
     def bundle(self, room_type: str) -> Bundle:
@@ -273,8 +277,8 @@ class Synthesizer:
         return self._bundles[rt]
 
     def load_all(self) -> None:
-        from .categories import ROOM_TYPES
-        for rt in ROOM_TYPES:
+        """Load the bundle of every room type of the weights directory."""
+        for rt in self.room_types:
             self.bundle(rt)
 
     def _renderer(self, resolution: int) -> TopDownRenderer:
@@ -454,7 +458,7 @@ class Synthesizer:
         present = {o.category for o in scene.objects}
         allowed = torch.ones(len(spec.names) + 1, dtype=torch.bool, device=self.device)
         for k, name in enumerate(spec.names):
-            if CATEGORIES[name].tier == 'second' and not set(spec.supports(name)) & present:
+            if spec.info(name).tier == 'second' and not set(spec.supports(name)) & present:
                 allowed[k] = False
         allowed[-1] = allow_stop
         return allowed
@@ -503,7 +507,7 @@ class Synthesizer:
               ) -> np.ndarray:
         """Where the centre of a new ``category`` object may go on the location grid."""
         spec = ctx.spec
-        if CATEGORIES[category].tier == 'first':
+        if spec.info(category).tier == 'first':
             # A centre inside other furniture or a door's clear zone is always rejected.
             mask = ctx.floor_mask & ~ctx.door_mask & (small[OBJECT] < 0.5)
             # A piece of a group goes only where a partner could have it, for the group
@@ -521,7 +525,7 @@ class Synthesizer:
         for parent in spec.supports(category):
             mask |= small[FIRST_CATEGORY + spec.index(parent)] > 0.5
         for name in spec.names:
-            if CATEGORIES[name].tier == 'second':
+            if spec.info(name).tier == 'second':
                 mask &= small[FIRST_CATEGORY + spec.index(name)] < 0.5
         return mask & ctx.floor_mask
 
@@ -574,7 +578,8 @@ class Synthesizer:
         """Catalog models from the best footprint fit; among those within ``fit_slack`` of
         the best, the ones that co-occur most with the models in the room come first (the
         user's models, which no training room holds, keep their footprint order)."""
-        ranked = catalog.load(self.config.catalog).ranked(category, width, depth)
+        ranked = catalog.load(self.config.catalog).ranked(category, width, depth,
+                                                          ctx.spec.room_type)
         best = catalog.footprint_distance(ranked[0], width, depth)
         close = [v for v in ranked
                  if catalog.footprint_distance(v, width, depth) <= best + self.config.fit_slack]
@@ -599,7 +604,7 @@ class Synthesizer:
         """The first of the ``models_per_location`` catalog models nearest the predicted
         footprint that stands at ``point`` facing ``yaw`` (pushed onto a wall it nearly
         touches, if it stands there too), or None."""
-        second = CATEGORIES[category].tier == 'second'
+        second = ctx.spec.info(category).tier == 'second'
         parent = self._parent(ctx, scene, category, point) if second else None
         if second and parent is None:
             return None

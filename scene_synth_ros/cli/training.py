@@ -24,6 +24,9 @@ def add_parser(sub) -> None:
     c.add_argument('--others-from', help='with --modules: take the other modules from the '
                    'bundles in this directory (same model configuration, e.g. the shipped '
                    'weights) and export')
+    c.add_argument('--data', help='an imported data set (the --out of scene-synth import): '
+                   'train its room types (all of them by default) on its rooms; the bundles '
+                   'carry its category sets')
     c.add_argument('--quiet', action='store_true', help='no progress bars')
     c.set_defaults(func=cmd_train)
 
@@ -67,15 +70,26 @@ def cmd_train(args) -> int:
         raise UserError(str(e)) from None
     run_root = Path(args.run_dir or f'runs/{cfg.name}')
     out = Path(args.weights_dir) if args.weights_dir else weights_dir()
-    print(f'training {", ".join(room_types(args.room_type))} with the {cfg.name} '
+    data = None
+    if args.data:
+        from ..datasets.training import describe_dir, room_type_specs
+        if not args.weights_dir:
+            raise UserError('--data needs --weights-dir: weights of an imported data set do '
+                            "not replace the package's own")
+        data = Path(args.data)
+        known = list(room_type_specs(describe_dir(data)))
+        types = known if args.room_type == 'all' else [args.room_type.strip().lower()]
+    else:
+        types = room_types(args.room_type)
+    print(f'training {", ".join(types)} with the {cfg.name} '
           f'configuration; checkpoints and logs in {run_root}, weights to {out}')
     modules = tuple(m.strip() for m in args.modules.split(',')) if args.modules else None
     if args.others_from and not modules:
         raise UserError('--others-from needs --modules: the modules to train')
     try:
-        train(room_types(args.room_type), cfg, run_root, out, progress=not args.quiet,
+        train(types, cfg, run_root, out, progress=not args.quiet,
               **({'modules': modules} if modules else {}),
-              others_from=Path(args.others_from) if args.others_from else None)
+              others_from=Path(args.others_from) if args.others_from else None, data_dir=data)
     except ValueError as e:     # bad arguments, refused with plain ValueErrors
         raise UserError(str(e)) from None
     return 0

@@ -4,10 +4,15 @@ A bundle is a plain dict saved with ``torch.save`` and read back with
 ``torch.load(..., weights_only=True)``: tensors (float16 to halve the size of the package;
 cast back to float32 on load), strings (the configuration, metrics and model list as JSON)
 and numbers. Nothing in it can execute code on load.
+
+A bundle trained on an imported data set carries its room type's category set
+(``RoomTypeSpec.to_dict``, JSON); loading it defines that room type in the process
+(``categories.define_room_types``). A bundle without one uses the paper's table.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 import json
 from pathlib import Path
 from typing import Any
@@ -15,8 +20,8 @@ from typing import Any
 import torch
 from torch import nn
 
-from ..categories import resolve_room_type, room_spec
-from ..errors import SceneSynthError
+from ..categories import RoomTypeSpec, define_room_types, resolve_room_type, room_spec
+from ..errors import RoomTypeConflict, SceneSynthError
 from ..files import writing_together
 from ..render import num_channels
 from . import NETWORKS
@@ -59,6 +64,7 @@ class Bundle:
     cooccurrence: torch.Tensor               # (M, M) counts over ``models``
     models: list[str]
     metrics: dict[str, Any] = field(default_factory=dict)
+    spec: RoomTypeSpec | None = None         # the data set's category set; None: the paper's
 
 
 def bundle_path(weights_dir: str | Path, room_type: str) -> Path:
@@ -71,6 +77,8 @@ def save_bundle(bundle: Bundle, path: str | Path) -> None:
         'config': bundle.config.to_json(), 'metrics': json.dumps(bundle.metrics),
         'models': json.dumps(bundle.models),
         'cooccurrence': bundle.cooccurrence.to(torch.int32)}
+    if bundle.spec is not None:
+        data['room_type_spec'] = json.dumps(bundle.spec.to_dict())
     for name in NETWORKS:
         data[name] = {k: (v.half() if v.is_floating_point() else v).contiguous()
                       for k, v in bundle.networks[name].state_dict().items()}
@@ -78,6 +86,45 @@ def save_bundle(bundle: Bundle, path: str | Path) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     with writing_together(path.parent, [path.name]) as tmp:
         torch.save(data, tmp / path.name)
+
+
+def bundle_specs(weights_dir: str | Path) -> dict[str, RoomTypeSpec | None]:
+    """The room types of the bundles in ``weights_dir``, each with the data set's category
+    set it carries (None: the paper's), without building any network. A file that is not
+    a readable bundle is left out here: loading it names what is wrong."""
+    out: dict[str, RoomTypeSpec | None] = {}
+    for path in sorted(Path(weights_dir).glob('*.pt')):
+        try:
+            st = path.stat()
+            entry = _bundle_spec(str(path), st.st_mtime_ns, st.st_size)
+        except (OSError, BundleError):
+            continue
+        out[entry[0]] = entry[1]
+    return out
+
+
+@lru_cache(maxsize=64)
+def _bundle_spec(path: str, mtime: int, size: int) -> tuple[str, RoomTypeSpec | None]:
+    try:
+        # mmap: the tensors stay on disk, only the small entries are read
+        data = torch.load(path, map_location='cpu', weights_only=True, mmap=True)
+        room_type = str(data['room_type'])
+        spec = data.get('room_type_spec')
+        return room_type, RoomTypeSpec.from_dict(json.loads(spec)) if spec else None
+    except Exception as e:  # any unreadable file: the caller skips it
+        raise BundleError(f'{path}: {type(e).__name__}') from None
+
+
+def define_weights_room_types(weights_dir: str | Path) -> list[str]:
+    """Define in this process the room types of the data sets that the bundles in
+    ``weights_dir`` were trained on (``categories.define_room_types``); the room types of
+    the directory's bundles, paper's and data sets' alike."""
+    specs = bundle_specs(weights_dir)
+    try:
+        define_room_types(s for s in specs.values() if s is not None)
+    except RoomTypeConflict as e:
+        raise BundleError(f'{weights_dir}: {e}') from None
+    return list(specs)
 
 
 def load_bundle(path: str | Path, device: str | torch.device = 'cpu') -> Bundle:
@@ -95,6 +142,12 @@ def load_bundle(path: str | Path, device: str | torch.device = 'cpu') -> Bundle:
         raise BundleError(f'{path}: not a scene_synth_ros weights bundle of format {FORMAT}')
     try:
         cfg = PipelineConfig.from_dict(json.loads(data['config']))
+        spec = None
+        if 'room_type_spec' in data:
+            spec = RoomTypeSpec.from_dict(json.loads(data['room_type_spec']))
+            if spec.room_type != data['room_type']:
+                raise ValueError(f'its category set is of room type {spec.room_type!r}')
+            define_room_types([spec])
         rt = resolve_room_type(data['room_type'])
         nets = build_networks(rt, cfg.model)
         for name in NETWORKS:
@@ -103,7 +156,9 @@ def load_bundle(path: str | Path, device: str | torch.device = 'cpu') -> Bundle:
             nets[name].load_state_dict(state)
             nets[name].to(device).eval()
         return Bundle(rt, cfg, nets, data['cooccurrence'].float(), json.loads(data['models']),
-                      json.loads(data.get('metrics', '{}')))
+                      json.loads(data.get('metrics', '{}')), spec)
+    except RoomTypeConflict as e:
+        raise BundleError(f'{path}: {e}') from None
     except (KeyError, ValueError, RuntimeError, TypeError) as e:
         raise BundleError(f'{path}: weights do not match the networks of this version '
                           f'({type(e).__name__}: {str(e).splitlines()[0]})') from None

@@ -15,7 +15,7 @@ import math
 import numpy as np
 import torch
 
-from ..categories import ROOM_SIZE_CAP, resolve_room_type, room_spec
+from ..categories import resolve_room_type, room_spec
 from ..render import Frame, TopDownRenderer
 from ..scene import Opening, PlacedObject, Room, Scene, wrap_angle
 from . import NETWORKS
@@ -108,7 +108,7 @@ class ExampleSource:
     @property
     def extent(self) -> float:
         """Metres of room an image covers (the room type's size cap)."""
-        return ROOM_SIZE_CAP[self.room_type]
+        return self.spec.size_cap
 
     @property
     def num_categories(self) -> int:

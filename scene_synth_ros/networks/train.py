@@ -18,7 +18,8 @@ import torch
 from torch import nn
 
 from ..catalog import variants
-from ..categories import ROOM_TYPES, resolve_room_type, room_spec
+from ..categories import (defined_room_type, define_room_types, resolve_room_type, room_spec,
+                          room_types)
 from ..corpus.generate import generate_corpus
 from ..files import writing_together
 from ..scene import Scene
@@ -39,9 +40,18 @@ class RoomCorpus:
     val: list[Scene]
 
 
-def load_corpus(room_type: str, cfg: PipelineConfig, workers: int | None = None) -> RoomCorpus:
-    """Training rooms 0..N-1 and held-out rooms N..N+V-1 of the corpus seed."""
+def load_corpus(room_type: str, cfg: PipelineConfig, workers: int | None = None,
+                data_dir: Path | None = None) -> RoomCorpus:
+    """Training rooms 0..N-1 and held-out rooms N..N+V-1 of the corpus seed; with
+    ``data_dir``, an imported data set's rooms split by ``datasets.training.split`` (the
+    corpus seed shuffles; at most N training and V held-out rooms)."""
     t = cfg.train
+    if data_dir is not None:
+        from ..datasets.training import load_rooms, split
+        rooms = load_rooms(data_dir, room_spec(room_type))
+        train_idx, val_idx = split(rooms.names, t.corpus_seed)
+        return RoomCorpus([rooms.scenes[k] for k in train_idx[:t.train_rooms]],
+                          [rooms.scenes[k] for k in val_idx[:t.val_rooms]])
     rooms = list(generate_corpus(room_type, t.train_rooms + t.val_rooms, seed=t.corpus_seed,
                                  workers=workers))
     return RoomCorpus(rooms[:t.train_rooms], rooms[t.train_rooms:])
@@ -49,7 +59,7 @@ def load_corpus(room_type: str, cfg: PipelineConfig, workers: int | None = None)
 
 def model_cooccurrence(room_type: str, scenes: list[Scene]) -> tuple[list[str], torch.Tensor]:
     """How often each pair of catalog models appears in the same training room."""
-    models = [v.model_id for c in room_spec(room_type).names for v in variants(c)]
+    models = [v.model_id for c in room_spec(room_type).names for v in variants(c, room_type)]
     index = {m: k for k, m in enumerate(models)}
     counts = torch.zeros(len(models), len(models))
     for s in scenes:
@@ -247,14 +257,17 @@ def component_table(nets: dict[str, nn.Module], val: ExampleSource, cfg: Pipelin
 def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights_dir: Path,
                     progress: bool = True, echo: Callable[[str], None] = print,
                     modules: tuple[str, ...] = NETWORKS,
-                    others_from: Path | None = None) -> Bundle | None:
+                    others_from: Path | None = None,
+                    data_dir: Path | None = None) -> Bundle | None:
     """Train (or resume) the modules of ``room_type`` and export the bundle. With a subset
     of ``modules`` only those are trained and nothing is exported: several processes can
     then train different modules of one room type at once in the same run directory, and a
     final run over all modules (each resuming at its end) exports the bundle. With
     ``others_from``, a directory of bundles made with the same model configuration, the
     modules not trained are taken from its bundle and the result is exported: one module
-    retrained, the others kept."""
+    retrained, the others kept. With ``data_dir`` (an imported data set whose room types are
+    defined, see ``train``) the rooms are the data set's and the bundle carries its room
+    type's category set."""
     rt = resolve_room_type(room_type)
     device = resolve_device(cfg.device)
     t = cfg.train
@@ -269,9 +282,13 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
         log_file.write(json.dumps({'room_type': rt, **entry}) + '\n')
         log_file.flush()
 
-    echo(f'{rt}: making {t.train_rooms} training and {t.val_rooms} held-out corpus rooms '
-         f'(corpus seed {t.corpus_seed})')
-    corpus = load_corpus(rt, cfg, workers=t.threads or None)
+    if data_dir is None:
+        echo(f'{rt}: making {t.train_rooms} training and {t.val_rooms} held-out corpus rooms '
+             f'(corpus seed {t.corpus_seed})')
+    corpus = load_corpus(rt, cfg, workers=t.threads or None, data_dir=data_dir)
+    if data_dir is not None:
+        echo(f'{rt}: {len(corpus.train)} training and {len(corpus.val)} held-out rooms of '
+             f'{data_dir}')
     m = cfg.model
     source = ExampleSource(rt, corpus.train, m.resolution, m.location_resolution,
                            target_radius=t.location_target_radius)
@@ -294,7 +311,8 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
         return None
     table = component_table(nets, val, cfg, device, rt)
     models, co = model_cooccurrence(rt, corpus.train)
-    bundle = Bundle(rt, cfg, nets, co, models, {'components': table})
+    bundle = Bundle(rt, cfg, nets, co, models, {'components': table},
+                    room_spec(rt) if defined_room_type(rt) else None)
     for net in nets.values():
         net.to('cpu')
     out = Path(weights_dir) / f'{rt}.pt'
@@ -338,17 +356,30 @@ def format_components(tables: dict[str, dict[str, dict[str, float]]],
     return '\n'.join(lines)
 
 
-def train(room_types: list[str], cfg: PipelineConfig, run_root: Path, weights_dir: Path,
+def train(types: list[str] | None, cfg: PipelineConfig, run_root: Path, weights_dir: Path,
           progress: bool = True, echo: Callable[[str], None] = print,
           modules: tuple[str, ...] = NETWORKS,
-          others_from: Path | None = None) -> dict[str, Bundle | None]:
+          others_from: Path | None = None,
+          data_dir: Path | None = None) -> dict[str, Bundle | None]:
+    """Train each of ``types`` (None: the paper's four, or with ``data_dir`` every room type
+    of the imported data set there, whose category sets it defines in this process)."""
     unknown = sorted(set(modules) - set(NETWORKS))
     if unknown:
         raise ValueError(f'unknown module {unknown[0]!r}; expected some of {", ".join(NETWORKS)}')
+    if data_dir is not None:
+        from ..datasets.training import describe_dir, room_type_specs
+        specs = room_type_specs(describe_dir(data_dir))
+        define_room_types(specs.values())
+        if types is None:
+            types = list(specs)
+        missing = [rt for rt in types if rt not in specs]
+        if missing:
+            raise ValueError(f'{data_dir} holds no {missing[0]} rooms; its room types are '
+                             f'{", ".join(specs)}')
     out = {}
-    for rt in room_types:
-        if rt not in ROOM_TYPES:
+    for rt in types if types is not None else list(room_types()):
+        if rt not in room_types():
             raise ValueError(f'unknown room type {rt!r}')
         out[rt] = train_room_type(rt, cfg, run_root, weights_dir, progress, echo, modules,
-                                  others_from)
+                                  others_from, data_dir)
     return out
