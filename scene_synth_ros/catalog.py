@@ -5,9 +5,9 @@ hypercube, so that small, large, low, tall, narrow and deep models all exist. Th
 dimensions are a pure function of the category's ranges (no randomness at run time), which
 keeps model ids stable across machines. A room type a data set defines
 (``categories.define_room_types``) has variants of its own categories, spanning the data's
-size ranges, with ids that name the room type (``kitchen__fridge_03``). Meshes are built on demand by
-``scene_synth_ros.meshes``. The module-level functions (``variants``, ``get``, ``nearest``,
-``ranked``) are this catalog's.
+size ranges, with ids that name the room type (``kitchen__fridge_03``). Meshes are built
+on demand by ``scene_synth_ros.meshes``. The module-level functions (``variants``, ``get``,
+``nearest``, ``ranked``) are this catalog's.
 
 A ``Catalog`` is the procedural catalog with the user's own models (``UserModel``, measured
 by ``scene_synth_ros.user_catalog``) in place of the procedural models of the categories

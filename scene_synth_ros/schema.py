@@ -35,7 +35,13 @@ import numpy as np
 import shapely
 
 from . import catalog
-from .categories import CATEGORIES, ROOM_TYPES, RoomTypeSpec, resolve_room_type, room_spec, room_types
+from .categories import (
+    CATEGORIES,
+    RoomTypeSpec,
+    resolve_room_type,
+    room_spec,
+    room_types,
+)
 from .errors import SceneSynthError, UnknownRoomType, number, quoted, with_article
 from .files import write_atomic
 from .limits import LimitExceeded, YamlError, check_tree, join, loads, loads_yaml

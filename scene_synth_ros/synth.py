@@ -40,7 +40,7 @@ from shapely.geometry import Polygon
 import torch
 
 from . import catalog, robot
-from .categories import CATEGORIES, RoomTypeSpec, resolve_room_type, room_spec
+from .categories import RoomTypeSpec, resolve_room_type, room_spec
 from .errors import SceneSynthError, UnknownCategory, quoted
 from .evaluation.design_rules import access, groups, walls
 from .geometry import (

@@ -18,8 +18,13 @@ import torch
 from torch import nn
 
 from ..catalog import variants
-from ..categories import (defined_room_type, define_room_types, resolve_room_type, room_spec,
-                          room_types)
+from ..categories import (
+    define_room_types,
+    defined_room_type,
+    resolve_room_type,
+    room_spec,
+    room_types,
+)
 from ..corpus.generate import generate_corpus
 from ..files import writing_together
 from ..scene import Scene
