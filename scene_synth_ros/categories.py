@@ -357,13 +357,15 @@ def define_room_types(specs: Iterable[RoomTypeSpec]) -> None:
 
 
 @contextmanager
-def room_types_defined(specs: Iterable[RoomTypeSpec]) -> Iterator[None]:
-    """``define_room_types`` for the duration of a ``with`` block; the room types known
-    before come back after it."""
+def room_types_defined(specs: Iterable[RoomTypeSpec], fresh: bool = False
+                       ) -> Iterator[None]:
+    """``define_room_types`` for the duration of a ``with`` block (with ``fresh``, on top of
+    the paper's types alone, as in a new process); the room types known before come back
+    after it."""
     saved = dict(_DEFINED)
     try:
-        _DEFINED.clear()
-        _DEFINED.update(saved)
+        if fresh:
+            _DEFINED.clear()
         define_room_types(specs)
         yield
     finally:

@@ -24,7 +24,13 @@ import time
 from typing import Any, Callable
 
 from . import robot
-from .categories import CATEGORIES, ROOM_TYPE_ALIASES, ROOM_TYPES, resolve_room_type
+from .categories import (
+    ROOM_TYPE_ALIASES,
+    ROOM_TYPES,
+    category_info,
+    resolve_room_type,
+    room_types,
+)
 from .errors import SceneSynthError, UnknownRoomType, quoted, sentence, with_article
 from .export import FORMATS as EXPORT_FORMATS
 from .export import UnknownFormat, parse_formats
@@ -69,9 +75,11 @@ class ServerConfig:
 # name -> (description, numeric range or allowed strings, read only). The node builds its
 # parameter descriptors from this table, and ``check`` enforces the same limits.
 PARAMETERS: dict[str, tuple[str, Any, bool]] = {
-    'room_type': ('room type of layouts arriving on ~/room_polygon: '
-                  + ', '.join(ROOM_TYPES) + ' (also accepted: '
-                  + ', '.join(f"'{a}'" for a in ROOM_TYPE_ALIASES) + ')', ROOM_TYPES, False),
+    'room_type': ('room type of layouts arriving on ~/room_polygon, one of those of the '
+                  'weights: the shipped weights have ' + ', '.join(ROOM_TYPES)
+                  + ' (also accepted: ' + ', '.join(f"'{a}'" for a in ROOM_TYPE_ALIASES)
+                  + '); weights trained on an imported data set, its room types', None,
+                  False),
     'seed': ('seed of the next room, object or suggestion; reads as the one the next request '
              'will use (each request takes the next integer); set it to replay a room',
              (0, 2**31 - 1), False),
@@ -121,6 +129,18 @@ class ConfigError(SceneSynthError, ValueError):
     """A parameter value that cannot be used, said in one sentence."""
 
 
+# Checked once the weights are loaded: their data set may define room types and categories.
+BY_WEIGHTS = ('room_type', 'next_category')
+
+
+def _check_weights_hold(config: ServerConfig, synth: Synthesizer) -> None:
+    """ConfigError unless the weights in use have a bundle for ``config.room_type``."""
+    if config.room_type not in synth.room_types:
+        raise ConfigError(f'room_type {config.room_type!r} has no weights in '
+                          f'{config.weights_dir or "the package"}; they have '
+                          f'{", ".join(synth.room_types) or "none"}')
+
+
 def check(name: str, value: Any) -> Any:
     """``value`` for parameter ``name``, normalised, or ConfigError saying why not."""
     if name not in PARAMETERS:
@@ -154,8 +174,8 @@ def _check_text(name: str, value: Any, limits) -> str:
         try:
             return resolve_room_type(value)
         except UnknownRoomType:
-            raise ConfigError(f'room_type {value!r} is not one of {", ".join(ROOM_TYPES)}') \
-                from None
+            raise ConfigError(f'room_type {quoted(value)} is not one of '
+                              f'{", ".join(room_types())}') from None
     if isinstance(limits, tuple) and value not in limits:
         raise ConfigError(f'{name} must be one of {", ".join(limits)}, got {value!r}')
     if name == 'device':
@@ -165,9 +185,11 @@ def _check_text(name: str, value: Any, limits) -> str:
             raise ConfigError(str(e)) from None
     if name == 'next_category' and value:
         value = ' '.join(value.replace('_', ' ').lower().split())     # office_chair too
-        if value not in CATEGORIES:
+        try:
+            category_info(value)
+        except KeyError:
             raise ConfigError(f'next_category {quoted(value)} is not a category '
-                              f'(`scene-synth catalog list` shows them)')
+                              f'(`scene-synth catalog list` shows them)') from None
     if name == 'frame_id' and (not value or any(c.isspace() for c in value)):
         raise ConfigError(f'frame_id must be a non-empty name without spaces, got {value!r}')
     if name == 'export_formats':
@@ -263,17 +285,23 @@ class SceneServer:
                  on_status: Callable[[Status], None] | None = None,
                  log: Callable[[str, str], None] | None = None,
                  on_seed: Callable[[int], None] | None = None):
+        # The weights come first: those trained on an imported data set define the room types
+        # and categories that room_type and next_category are checked against.
         for f in fields(ServerConfig):
-            setattr(config, f.name, check(f.name, getattr(config, f.name)))
+            if f.name not in BY_WEIGHTS:
+                setattr(config, f.name, check(f.name, getattr(config, f.name)))
+        import torch
+        torch.set_num_threads(config.torch_threads)
+        self._synth = self._load(config.weights_dir, config.device)
+        for name in BY_WEIGHTS:
+            setattr(config, name, check(name, getattr(config, name)))
+        _check_weights_hold(config, self._synth)
         robot_of(config)
         self.config = config
         self._publish = publish
         self._on_status = on_status or (lambda s: None)
         self._logger = log or (lambda level, text: None)
         self._on_seed = on_seed or (lambda seed: None)
-        import torch
-        torch.set_num_threads(config.torch_threads)
-        self._synth = self._load(config.weights_dir, config.device)
         self._lock = threading.Lock()
         self._epoch = 0                    # bumped by every accepted layout
         self._next_seed = config.seed
@@ -298,12 +326,12 @@ class SceneServer:
 
     def reconfigure(self, changes: dict[str, Any]) -> None:
         """Apply parameter changes, all or none; ConfigError names the first bad one."""
-        checked = {name: check(name, value) for name, value in changes.items()}
+        checked = {name: check(name, value) for name, value in changes.items()
+                   if name not in BY_WEIGHTS}
         for name in checked:
             if PARAMETERS[name][2] and checked[name] != getattr(self.config, name):
                 raise ConfigError(f'{name} is read-only: set it when the node starts')
         new = replace(self.config, **checked)
-        robot_of(new)
         synth = None
         if (new.weights_dir, new.device) != (self.config.weights_dir, self.config.device):
             try:
@@ -311,6 +339,11 @@ class SceneServer:
             except SceneSynthError as e:
                 raise ConfigError(f'weights_dir {new.weights_dir!r} cannot be used: {e}') \
                     from None
+        late = {name: check(name, value) for name, value in changes.items()
+                if name in BY_WEIGHTS}
+        new = replace(new, **late)
+        _check_weights_hold(new, synth or self._synth)
+        robot_of(new)
         with self._lock:
             self.config = new
             if synth is not None:

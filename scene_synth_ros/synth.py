@@ -51,7 +51,13 @@ from .geometry import (
     overlaps_any,
     support_fraction,
 )
-from .networks.bundle import Bundle, bundle_path, define_weights_room_types, load_bundle
+from .networks.bundle import (
+    Bundle,
+    BundleError,
+    bundle_path,
+    define_weights_room_types,
+    load_bundle,
+)
 from .networks.category import category_probabilities
 from .networks.config import resolve_device
 from .networks.location import location_distribution, sample_pixel
@@ -77,14 +83,23 @@ INSERTION_RULES = {'windows_clear': walls.window_verdicts,
 # The only categories whose insertion can change a rule's verdicts (a rule not named here can
 # be changed by any piece): a chair's place at a table depends on chairs and tables alone,
 # and so on. Insertion skips the other rules, which is the same answer for less work.
+# Wall contact's categories depend on the room type (``rule_categories``).
 RULE_CATEGORIES: dict[str, frozenset[str]] = {
-    'wall_contact': walls.WALL_FURNITURE,
     'bath_in_corner': frozenset({'bathtub', 'shower'}),
     'chair_at_table': frozenset(groups.CHAIRS + groups.TABLES),
     'nightstand_by_bed': frozenset(('stand',) + groups.BEDS_WITH_HEAD),
     'bidet_by_toilet': frozenset({'bidet', 'toilet'}),
     'coffee_table_has_seating': frozenset(('coffee table',) + groups.LOUNGE_SEATS),
 }
+
+def rule_categories(rule: str, room_type: str) -> frozenset[str] | None:
+    """The categories whose insertion can change ``rule``'s verdicts in a room of
+    ``room_type`` (None: any). Wall furniture is the room type's own: a data set says which
+    of its categories stand against a wall."""
+    if rule == 'wall_contact':
+        return walls.wall_categories(room_type)[0]
+    return RULE_CATEGORIES.get(rule)
+
 
 # What ``Synthesis.timings`` counts seconds of (see the module docstring).
 MODULES = ('render', 'category', 'location', 'orientation', 'dimensions', 'insertion')
@@ -277,7 +292,10 @@ class Synthesizer:
         return self._bundles[rt]
 
     def load_all(self) -> None:
-        """Load the bundle of every room type of the weights directory."""
+        """Load the bundle of every room type of the weights directory; ``BundleError``
+        names a bad file, or says there is none."""
+        if not self.room_types:
+            raise BundleError(f'{self.weights_dir}: no weights bundles (<room type>.pt) there')
         for rt in self.room_types:
             self.bundle(rt)
 
@@ -649,8 +667,8 @@ class Synthesizer:
         # The design rules kept at insertion, then the robot promise: what held before this
         # object must hold after it, and the object must keep them itself.
         for name in self.config.insertion_rules:
-            if name in ctx.waived or (name in RULE_CATEGORIES
-                                      and obj.category not in RULE_CATEGORIES[name]):
+            changed_by = rule_categories(name, ctx.spec.room_type)
+            if name in ctx.waived or (changed_by is not None and obj.category not in changed_by):
                 continue
             key = (name, id(scene), len(scene.objects))
             if key not in ctx.rules:

@@ -30,6 +30,16 @@ def tiny_config(steps: int = 4) -> PipelineConfig:
                           orientation=sched, snap=sched, dimensions=sched))
 
 
+@pytest.fixture(autouse=True)
+def paper_room_types():
+    """Every test starts and ends with the paper's room types only: a test that loads
+    weights of an imported data set defines its room types in the process
+    (``categories.define_room_types``), which must not leak into the next test."""
+    from scene_synth_ros.categories import room_types_defined
+    with room_types_defined([], fresh=True):
+        yield
+
+
 @pytest.fixture(scope='session')
 def tiny_weights(tmp_path_factory) -> Path:
     """A weights directory with tiny, briefly trained bundles for bathroom and bedroom."""
@@ -61,13 +71,16 @@ class CliRun:
 def cli(capsys):
     """``cli(*args, ok=True)`` runs ``scene-synth *args`` through ``main(argv)`` in this
     process and returns a ``CliRun``; with ``ok`` it also asserts exit code 0."""
+    from scene_synth_ros.categories import room_types_defined
     from scene_synth_ros.cli import main
 
     def run(*args, ok: bool = True) -> CliRun:
         capsys.readouterr()                 # drop output from before, so this is the command's
         threads = torch.get_num_threads()
         try:
-            code = main([str(a) for a in args])
+            # each command starts with the room types a fresh process has
+            with room_types_defined([], fresh=True):
+                code = main([str(a) for a in args])
         except SystemExit as e:             # argparse: usage errors and --help
             code = int(e.code or 0)
         finally:

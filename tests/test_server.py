@@ -231,9 +231,22 @@ def test_check_rejects_what_the_descriptors_would():
 
 def test_missing_and_corrupt_weights_fail_at_construction_naming_the_file(tmp_path):
     import shutil
-    shutil.copy(weights_dir() / 'bedroom.pt', tmp_path / 'bedroom.pt')
-    with pytest.raises(BundleError, match='living.pt'):
+    with pytest.raises(BundleError, match='no weights bundles'):
         SceneServer(ServerConfig(weights_dir=str(tmp_path)), lambda s: None)
+    # A directory may hold only some room types (a data set's, or one retrained type): the
+    # node serves those, and a room_type without weights is refused up front.
+    shutil.copy(weights_dir() / 'bedroom.pt', tmp_path / 'bedroom.pt')
+    srv = SceneServer(ServerConfig(weights_dir=str(tmp_path), auto_generate=False),
+                      lambda s: None)
+    try:
+        with pytest.raises(ConfigError, match="room_type 'living' has no weights in .*; "
+                           'they have bedroom'):
+            srv.reconfigure({'room_type': 'living'})
+    finally:
+        srv.close()
+    with pytest.raises(ConfigError, match="room_type 'office' has no weights"):
+        SceneServer(ServerConfig(weights_dir=str(tmp_path), room_type='office'),
+                    lambda s: None)
     for rt in ('living', 'office', 'bathroom'):
         shutil.copy(weights_dir() / f'{rt}.pt', tmp_path / f'{rt}.pt')
     data = (tmp_path / 'office.pt').read_bytes()

@@ -13,7 +13,7 @@ import sys
 
 from ..errors import SceneSynthError
 from . import catalog, corpus, datasets, evaluation, export, ros, synthesis, training
-from .common import EXIT_BAD_INPUT
+from .common import EXIT_BAD_INPUT, define_weights
 
 GROUPS = (synthesis, export, training, evaluation, corpus, datasets, catalog, ros)
 
@@ -30,6 +30,7 @@ def main(argv: list[str] | None = None) -> int:
     """Run one command; a ``SceneSynthError`` is printed as its one sentence, exit code 2."""
     args = build_parser().parse_args(argv)
     try:
+        define_weights(args)
         return args.func(args)
     except SceneSynthError as e:
         print(f'scene-synth: {e}', file=sys.stderr)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .common import UserError, load_catalog
+from .common import UserError, data_set_option, load_catalog
 
 
 def add_parser(sub) -> None:
@@ -22,6 +22,7 @@ def add_parser(sub) -> None:
     c.add_argument('--category-map', help='build: the 3D-FUTURE category map (YAML; default: '
                    'the one shipped in scene_synth_ros/user_catalog/)')
     c.add_argument('--catalog', help='list: a catalog file of your own models (catalog build)')
+    data_set_option(c)
     c.set_defaults(func=cmd_catalog)
 
 

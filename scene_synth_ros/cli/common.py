@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from ..categories import ROOM_TYPES, resolve_room_type
+from ..categories import resolve_room_type
 from ..errors import SceneSynthError
 
 EXIT_BAD_INPUT = 2
@@ -16,10 +16,28 @@ class UserError(SceneSynthError):
     """Bad command-line input: printed as one sentence, exit code 2, no traceback."""
 
 
+def data_set_option(parser) -> None:
+    """``--weights-dir`` on a command that only reads scenes: the weights that furnished
+    them, whose data set's room types and categories the scenes use."""
+    parser.add_argument('--weights-dir', help='weights trained on an imported data set '
+                        '(scene-synth train --data): the room types and categories of scenes '
+                        'they furnished')
+
+
+def define_weights(args) -> None:
+    """Define the room types of the data set that ``args.weights_dir``'s bundles were
+    trained on, before any room type or scene is read (``categories.define_room_types``)."""
+    if getattr(args, 'weights_dir', None) and getattr(args, 'defines_room_types', True):
+        from ..networks.bundle import define_weights_room_types
+        define_weights_room_types(args.weights_dir)
+
+
 def room_types(value: str) -> list[str]:
-    """The room types a ``--room-type`` value names: one, or every one for ``all``."""
+    """The room types a ``--room-type`` value names: one, or every one for ``all`` (the
+    paper's four, or every room type of the data set of the weights in use)."""
     if value == 'all':
-        return list(ROOM_TYPES)
+        from ..categories import room_types as known
+        return list(known())
     return [resolve_room_type(value)]
 
 

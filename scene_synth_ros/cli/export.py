@@ -4,7 +4,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .common import UserError, load_catalog, load_scene_file, robot_from, robot_options
+from .common import (
+    UserError,
+    data_set_option,
+    load_catalog,
+    load_scene_file,
+    robot_from,
+    robot_options,
+)
 
 
 def add_parser(sub) -> None:
@@ -25,6 +32,7 @@ def add_parser(sub) -> None:
                    'dynamic bodies (SDF, MJCF, URDF, USD)')
     c.add_argument('--catalog', help='the catalog of your own models the scene was furnished '
                    'from (`scene-synth catalog build`): their meshes are exported')
+    data_set_option(c)
     c.set_defaults(func=cmd_export)
 
     c = sub.add_parser('render', help='draw a scene JSON as a top-down picture')
@@ -33,10 +41,12 @@ def add_parser(sub) -> None:
     c.add_argument('--channels', help="the network input image as a .npy (C x N x N)")
     c.add_argument('--resolution', type=int, default=64)
     c.add_argument('--title')
+    data_set_option(c)
     c.set_defaults(func=cmd_render)
 
     c = sub.add_parser('validate', help='check scene JSON files: schema and physics')
     c.add_argument('files', nargs='+')
+    data_set_option(c)
     c.set_defaults(func=cmd_validate)
 
     c = sub.add_parser('reach', help='the robot promise measured on scene files: doors '
@@ -45,6 +55,7 @@ def add_parser(sub) -> None:
     c.add_argument('files', nargs='+')
     robot_options(c)
     c.add_argument('--png', help='a picture of the reachable floor (one file only)')
+    data_set_option(c)
     c.set_defaults(func=cmd_reach)
 
 

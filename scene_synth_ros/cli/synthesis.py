@@ -45,9 +45,12 @@ def add_parser(sub) -> None:
     c.set_defaults(func=cmd_suggest)
 
     c = sub.add_parser('gallery', help='a grid of corpus rooms, synthesized rooms (one row '
-                       'per room type) or completions of one partial room')
-    c.add_argument('--source', choices=('corpus', 'synthesized', 'completions'),
+                       'per room type), completions of one partial room, or an imported data '
+                       "set's held-out rooms beside rooms synthesized in the same shells")
+    c.add_argument('--source', choices=('corpus', 'synthesized', 'completions', 'data'),
                    default='corpus')
+    c.add_argument('--data', help='data: the imported data set the --weights-dir were '
+                   'trained on (scene-synth train --data)')
     c.add_argument('--out', default='docs/gallery/corpus.png')
     c.add_argument('--per-type', type=int, default=3, help='columns of the grid')
     c.add_argument('--seed', type=int, default=0)
@@ -163,10 +166,14 @@ def cmd_generate(args) -> int:
         room = load_scene_file(args.layout).room
         title = f'{Path(args.layout).stem} (seed {args.seed})'
     else:
+        from ..categories import ROOM_TYPES
         from ..corpus.generate import empty_room
         rt = room_types(args.room_type)
         if len(rt) != 1:
             raise UserError('generate furnishes one room: give one --room-type, not all')
+        if rt[0] not in ROOM_TYPES:
+            raise UserError(f'{rt[0]} is a room type of the data set the weights were trained '
+                            f'on, and the corpus makes no empty {rt[0]}: give --layout')
         room = empty_room(rt[0], args.seed)
         title = f'{rt[0]} (seed {args.seed})'
     result = synth.generate(room, args.seed)
@@ -285,6 +292,34 @@ def _synthesized_grid(args) -> tuple[list, list[str]]:
     return scenes, titles
 
 
+def _data_grid(args) -> tuple[list, list[str]]:
+    """Per room type of the weights, ``per_type`` held-out rooms of the data set, then the
+    rooms synthesized in their empty shells."""
+    from ..categories import room_spec
+    from ..datasets.training import describe_dir, split_rooms
+    if not args.data or not args.weights_dir:
+        raise UserError('--source data needs --data and --weights-dir: the imported data set '
+                        'and the weights trained on it')
+    in_data = describe_dir(args.data).room_types
+    synth = _synthesizer(args)
+    scenes, titles = [], []
+    for rt in synth.room_types:
+        if rt not in in_data:
+            continue
+        seed = synth.bundle(rt).config.train.corpus_seed
+        split = split_rooms(args.data, room_spec(rt), seed, held_out_rooms=args.per_type)
+        for name, real in zip(split.held_out_names, split.held_out, strict=True):
+            scenes.append(real)
+            titles.append(f'{rt}: {Path(name).stem} (held out)')
+        for i, real in enumerate(split.held_out):
+            scenes.append(synth.generate(real.room, args.seed + i).scene)
+            titles.append(f'{rt}: synthesized, same shell (seed {args.seed + i})')
+    if not scenes:
+        raise UserError(f'{args.data} holds none of the room types of the weights '
+                        f'({", ".join(synth.room_types)})')
+    return scenes, titles
+
+
 def _completions_grid(args) -> tuple[list, list[str]]:
     from ..paths import examples_dir
     synth = _synthesizer(args)
@@ -299,11 +334,12 @@ def _completions_grid(args) -> tuple[list, list[str]]:
 def cmd_gallery(args) -> int:
     from ..plot import save_grid
     grid = {'corpus': _corpus_grid, 'synthesized': _synthesized_grid,
-            'completions': _completions_grid}[args.source]
+            'completions': _completions_grid, 'data': _data_grid}[args.source]
     scenes, titles = grid(args)
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
-    save_grid(scenes, out, ncols=args.per_type, titles=titles)
+    cols = args.per_type * (2 if args.source == 'data' else 1)
+    save_grid(scenes, out, ncols=cols, titles=titles)
     print(f'wrote {out}')
     return 0
 

@@ -28,7 +28,8 @@ def add_parser(sub) -> None:
                    'train its room types (all of them by default) on its rooms; the bundles '
                    'carry its category sets')
     c.add_argument('--quiet', action='store_true', help='no progress bars')
-    c.set_defaults(func=cmd_train)
+    # training writes into --weights-dir: its old bundles' category sets must not be defined
+    c.set_defaults(func=cmd_train, defines_room_types=False)
 
     c = sub.add_parser('components', help="the paper's component table of trained weights, "
                        'beside randomly initialised networks (held-out corpus rooms)')

@@ -128,3 +128,28 @@ def split(names: list[str], seed: int, held_out: float = HELD_OUT_FRACTION
     n_val = max(1, round(len(order) * held_out)) if len(order) > 1 else 0
     cut = len(order) - n_val
     return sorted(order[:cut]), sorted(order[cut:])
+
+
+@dataclass
+class DataSplit:
+    """A room type's rooms of a data set, divided as training divides them."""
+
+    train: list[Scene]
+    held_out: list[Scene]
+    held_out_names: list[str]
+    removed: Counter
+
+
+def split_rooms(data_dir: str | Path, spec: RoomTypeSpec, seed: int,
+                train_rooms: int | None = None, held_out_rooms: int | None = None
+                ) -> DataSplit:
+    """The training rooms (at most ``train_rooms``) and held-out rooms (at most
+    ``held_out_rooms``) of ``spec``'s room type in ``data_dir``: what ``scene-synth train
+    --data`` trains and validates on with corpus seed ``seed``, and what the evaluation and
+    the gallery compare with."""
+    rooms = load_rooms(data_dir, spec)
+    train_idx, held = split(rooms.names, seed)
+    held = held[:held_out_rooms]
+    return DataSplit([rooms.scenes[k] for k in train_idx[:train_rooms]],
+                     [rooms.scenes[k] for k in held], [rooms.names[k] for k in held],
+                     rooms.removed)

@@ -12,7 +12,9 @@ One module per measurement:
 
 with ``data`` (the rooms compared), ``perturb`` (the perturbed-corpus baseline),
 ``figures``, ``report``, ``paper`` (the paper's figures) and ``run`` (``EvalConfig`` and
-``run_evaluation``, which ``scene-synth evaluate`` calls).
+``run_evaluation``, which ``scene-synth evaluate`` calls). ``dataset`` and ``dataset_report``
+are ``scene-synth evaluate --data``: synthesized rooms against the rooms of an imported data
+set that training held out.
 """
 __all__ = ['EvalConfig', 'EvaluationError', 'run_evaluation']
 

@@ -39,10 +39,14 @@ def package_uri(model_id: str) -> str:
 
 def shipped_variant(obj) -> ModelVariant | None:
     """The catalog model whose shipped mesh shows a placed object: its own model, else the
-    nearest model of its category by footprint; None for a category the catalog lacks."""
+    nearest model of its category by footprint; None for a category the catalog lacks.
+    Models of a data set's room types have no shipped mesh: a category of the same name
+    in the paper's table lends its own."""
     try:
         v = catalog.get(obj.model_id)
     except KeyError:
+        v = None
+    if v is not None and catalog.DATA_SET_MARK in v.model_id:
         v = None
     if v is not None and v.category == obj.category:
         return v

@@ -91,15 +91,15 @@ def save_bundle(bundle: Bundle, path: str | Path) -> None:
 def bundle_specs(weights_dir: str | Path) -> dict[str, RoomTypeSpec | None]:
     """The room types of the bundles in ``weights_dir``, each with the data set's category
     set it carries (None: the paper's), without building any network. A file that is not
-    a readable bundle is left out here: loading it names what is wrong."""
+    a readable bundle counts by its name, with None: loading it names what is wrong."""
     out: dict[str, RoomTypeSpec | None] = {}
     for path in sorted(Path(weights_dir).glob('*.pt')):
         try:
             st = path.stat()
-            entry = _bundle_spec(str(path), st.st_mtime_ns, st.st_size)
+            room_type, spec = _bundle_spec(str(path), st.st_mtime_ns, st.st_size)
         except (OSError, BundleError):
-            continue
-        out[entry[0]] = entry[1]
+            room_type, spec = path.stem, None
+        out[room_type] = spec
     return out
 
 

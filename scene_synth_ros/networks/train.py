@@ -52,11 +52,10 @@ def load_corpus(room_type: str, cfg: PipelineConfig, workers: int | None = None,
     corpus seed shuffles; at most N training and V held-out rooms)."""
     t = cfg.train
     if data_dir is not None:
-        from ..datasets.training import load_rooms, split
-        rooms = load_rooms(data_dir, room_spec(room_type))
-        train_idx, val_idx = split(rooms.names, t.corpus_seed)
-        return RoomCorpus([rooms.scenes[k] for k in train_idx[:t.train_rooms]],
-                          [rooms.scenes[k] for k in val_idx[:t.val_rooms]])
+        from ..datasets.training import split_rooms
+        data = split_rooms(data_dir, room_spec(room_type), t.corpus_seed, t.train_rooms,
+                           t.val_rooms)
+        return RoomCorpus(data.train, data.held_out)
     rooms = list(generate_corpus(room_type, t.train_rooms + t.val_rooms, seed=t.corpus_seed,
                                  workers=workers))
     return RoomCorpus(rooms[:t.train_rooms], rooms[t.train_rooms:])

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from ..catalog import UserModel
-from ..categories import CATEGORIES
+from ..categories import category_info
 from ..errors import number
 from .axes import parse_axis, to_package_frame
 from .spec import ModelSpec
@@ -98,7 +98,7 @@ def _size(w: float, d: float, h: float) -> str:
 def _implausible(spec: ModelSpec, w: float, d: float, h: float) -> str | None:
     """Why (width, depth, height) is implausible for the category, with a hint at the
     likely mistake (units, a front along the wrong axis), or None."""
-    info = CATEGORIES[spec.category]
+    info = category_info(spec.category)
     if info.size_is_plausible(w, d, h):
         return None
     # The ranges as ``size_is_plausible`` widens them by default (by half).

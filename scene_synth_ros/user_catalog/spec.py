@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ..categories import CATEGORIES
+from ..categories import category_info
 from ..errors import quoted
 from .axes import parse_axis
 
@@ -53,11 +53,17 @@ def default_id(path: Path) -> str:
 
 
 def category_of(text: object) -> str | None:
-    """A category of ours from its name, or a folder's (``double_bed``), else None."""
+    """A category of ours from its name, or a folder's (``double_bed``), else None. The
+    categories of a data set whose weights are in use count too
+    (``categories.define_room_types``: ``--weights-dir`` on the command line)."""
     if not isinstance(text, str):
         return None
     name = text.strip().lower().replace('_', ' ')
-    return name if name in CATEGORIES else None
+    try:
+        category_info(name)
+    except KeyError:
+        return None
+    return name
 
 
 def make_spec(entry: dict[str, Any], folder: Path, defaults: dict[str, Any]

@@ -26,12 +26,29 @@ from dataclasses import dataclass
 import math
 from typing import Callable, Iterable, Sequence
 
+from ...categories import CategoryInfo, category_info
+from ...errors import UnknownRoomType
 from ...scene import Scene
 
 Outcome = tuple[int, int]          # (cases that keep the rule, cases) in one room
 
 # Every kind of bed, for the rules of every family that ask about beds.
 BEDS = ('double bed', 'single bed', 'bunker bed', 'baby bed', 'daybed')
+
+
+def category_of(name: str, room_type: str) -> CategoryInfo | None:
+    """What is known of category ``name`` in a room of ``room_type``: the room type's own
+    category set first (a data set's categories, sizes and wall flags live there), then the
+    paper's table; None when neither knows it. For the paper's room types this is
+    ``categories.CATEGORIES[name]``."""
+    for rt in (room_type, None):
+        try:
+            return category_info(name, rt)
+        except KeyError:
+            return None
+        except UnknownRoomType:     # a room of a type this process does not define
+            continue
+    return None
 
 
 @dataclass(frozen=True)

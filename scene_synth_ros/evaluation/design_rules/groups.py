@@ -68,7 +68,7 @@ from shapely.geometry import LineString, Polygon
 
 from ...categories import CATEGORIES
 from ...scene import PlacedObject, Scene, wrap_angle
-from . import Outcome, Rule
+from . import Outcome, Rule, category_of
 from .spatial import bearing, off_axes
 
 # ---- thresholds ------------------------------------------------------------------------
@@ -318,7 +318,8 @@ def partner_zone(scene: Scene, rule: str, category: str):
     category's largest half-extent is allowed for), not the rule itself."""
     if category not in PARTNER_RULES.get(rule, ()):
         return None
-    info = CATEGORIES[category]
+    # The room type's own sizes: a data set's coffee table is not the paper's.
+    info = category_of(category, scene.room.room_type) or CATEGORIES[category]
     m = max(info.width[1], info.depth[1]) / 2
     boxes = []
     if rule == 'chair_at_table':

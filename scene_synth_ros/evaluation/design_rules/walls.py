@@ -2,7 +2,9 @@
 
 Distances are measured to the floor outline, its collinear vertices merged so that a wall is
 one straight run however the outline was drawn. *Wall furniture* is every first-tier category
-marked ``against_wall`` in ``categories.CATEGORIES``, and for all of them the side meant to
+marked ``against_wall`` in the room type's category set (``categories.CATEGORIES`` for the
+paper's room types, ``WALL_FURNITURE``; a data set's own flags for its room types, so that
+its beds and dressers are held to their walls too), and for all of them the side meant to
 touch the wall is the back (``spatial.side(obj, 'back')``): a bed's headboard, the long back
 of a sofa, a daybed or a bathtub, a wardrobe's carcass; the corpus puts every one of them
 there. An object's *back gap* is how far its back stands from the wall it backs onto: for
@@ -18,9 +20,9 @@ at most ``WALL_CONTACT`` (10 cm).
 ``WALL_CONTACT`` and less than ``NEAR_MISS`` (10 to 40 cm): a slot behind it that neither
 reads as against the wall nor is wide enough to use.
 
-``no_floating_large_pieces``: a case is a piece of one of ``LARGE_PIECES``, the wall
-categories whose mean footprint is at least ``LARGE_FOOTPRINT`` (0.35 m^2): beds of every
-kind, sofas, wardrobes, desks, dressers, dressing tables, TV stands, shelving, pianos,
+``no_floating_large_pieces``: a case is a piece of a *large* wall category, one whose mean
+footprint is at least ``LARGE_FOOTPRINT`` (0.35 m^2); of the paper's (``LARGE_PIECES``): beds
+of every kind, sofas, wardrobes, desks, dressers, dressing tables, TV stands, shelving, pianos,
 fireplaces, bathtubs, showers, sinks and washers (not nightstands, shoe cabinets, bathroom
 cabinets, water machines, WC pans or bidets). It floats, and breaks the rule, when its
 footprint is more than ``FLOAT_WALL_GAP`` (0.4 m) from every wall and more than ``GROUP_GAP``
@@ -54,7 +56,8 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon
 
-from ...categories import CATEGORIES
+from ...categories import CATEGORIES, RoomTypeSpec, room_spec
+from ...errors import UnknownRoomType
 from ...geometry import ROBOT_WIDTH
 from ...scene import Opening, PlacedObject, Room, Scene, Wall, box_corners
 from . import BEDS, Rule
@@ -96,11 +99,36 @@ WINDOW_ZONE_DEPTH = 0.20
 # a wardrobe at the edge, not a wardrobe in front of it.
 WINDOW_SHARE = 0.25
 
+# The paper's wall furniture and large pieces. The rules ask ``wall_categories``, which gives
+# these for the paper's room types and reads a data set's own category set for its types.
 WALL_FURNITURE = frozenset(c.name for c in CATEGORIES.values()
                            if c.tier == 'first' and c.against_wall)
 
 LARGE_PIECES = frozenset(c for c in WALL_FURNITURE
                          if CATEGORIES[c].mean_footprint >= LARGE_FOOTPRINT)
+
+# id of a room type's category set -> (the set, its wall furniture, its large pieces): the
+# rules run inside insertion, too often to look every object's category up anew.
+_WALL_SETS: dict[int, tuple[RoomTypeSpec, frozenset[str], frozenset[str]]] = {}
+
+
+def wall_categories(room_type: str) -> tuple[frozenset[str], frozenset[str]]:
+    """The wall furniture and the large pieces among it in a room of ``room_type``: by the
+    room type's category set for its categories, by the paper's table for the others
+    (``design_rules.category_of``); the paper's sets for a room type not known here."""
+    try:
+        spec = room_spec(room_type)
+    except UnknownRoomType:
+        return WALL_FURNITURE, LARGE_PIECES
+    hit = _WALL_SETS.get(id(spec))
+    if hit is None or hit[0] is not spec:
+        own = [c.info for c in spec.categories if c.info.tier == 'first' and c.info.against_wall]
+        wall = (WALL_FURNITURE - set(spec.names)) | {i.name for i in own}
+        large = (LARGE_PIECES - set(spec.names)) | {
+            i.name for i in own if i.mean_footprint >= LARGE_FOOTPRINT}
+        hit = _WALL_SETS[id(spec)] = (spec, frozenset(wall), frozenset(large))
+    return hit[1], hit[2]
+
 
 _SEATS = frozenset({'office chair', 'chair', 'straight chair', 'stool', 'bench chair'})
 SEATED = frozenset({'desk', 'dressing table', 'piano'})    # their seat partners face them
@@ -185,7 +213,8 @@ def union_length(intervals: list[tuple[float, float]]) -> float:
 # ---- the rules ---------------------------------------------------------------------------
 def _back_gaps(scene: Scene) -> tuple[list[PlacedObject], np.ndarray]:
     """The room's pieces of wall furniture and each one's back gap."""
-    pieces = [o for o in scene.first_tier if o.category in WALL_FURNITURE]
+    wall, _ = wall_categories(scene.room.room_type)
+    pieces = [o for o in scene.first_tier if o.category in wall]
     if not pieces:
         return pieces, np.zeros(0)
     return pieces, back_gaps(pieces, wall_runs(scene.room))
@@ -219,7 +248,8 @@ def is_partner(piece: PlacedObject, other: PlacedObject) -> bool:
 def floating(scene: Scene) -> list[PlacedObject]:
     """The large pieces off every wall and away from every partner."""
     first = scene.first_tier
-    large = [k for k, o in enumerate(first) if o.category in LARGE_PIECES]
+    _, pieces = wall_categories(scene.room.room_type)
+    large = [k for k, o in enumerate(first) if o.category in pieces]
     if not large:
         return []
     fps = shapely.polygons(corner_array(first))
@@ -233,7 +263,8 @@ def floating(scene: Scene) -> list[PlacedObject]:
 
 
 def measure_floating(scene: Scene) -> tuple[int, int]:
-    cases = sum(o.category in LARGE_PIECES for o in scene.first_tier)
+    _, pieces = wall_categories(scene.room.room_type)
+    cases = sum(o.category in pieces for o in scene.first_tier)
     return cases - len(floating(scene)), cases
 
 

@@ -1,0 +1,187 @@
+"""Training on an imported data set: its room types' category sets (from dataset.yaml), its
+rooms reduced to what the pipeline places, the held-out split, bundles that carry their
+category sets, and the commands and the server using such weights. The data are the real
+ProcTHOR rooms of ../shared/data/real/procthor, imported in the test."""
+import json
+from pathlib import Path
+
+from conftest import tiny_config
+import pytest
+
+from scene_synth_ros import catalog
+from scene_synth_ros.categories import (
+    RoomTypeSpec,
+    define_room_types,
+    paper_spec,
+    resolve_room_type,
+    room_spec,
+    room_types,
+    room_types_defined,
+)
+from scene_synth_ros.datasets import import_dataset
+from scene_synth_ros.datasets.training import (
+    describe_dir,
+    load_rooms,
+    room_type_specs,
+    split,
+)
+from scene_synth_ros.errors import RoomTypeConflict, UnknownRoomType
+
+PROCTHOR = Path(__file__).resolve().parents[2] / 'shared/data/real/procthor'
+pytestmark = pytest.mark.skipif(not (PROCTHOR / 'procthor_1room_train.jsonl.gz').is_file(),
+                                reason='the real ProcTHOR file is not beside the repository')
+
+
+@pytest.fixture(scope='module')
+def data(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp('procthor') / 'data'
+    import_dataset('procthor', [PROCTHOR / 'procthor_1room_train.jsonl.gz'], out)
+    return out
+
+
+@pytest.fixture(scope='module')
+def kitchen_weights(data, tmp_path_factory) -> Path:
+    """Tiny kitchen networks trained on the imported kitchens (a room type the paper lacks)."""
+    from scene_synth_ros.networks.train import train
+    root = tmp_path_factory.mktemp('kitchen')
+    with room_types_defined([]):
+        train(['kitchen'], tiny_config(), root / 'run', root / 'weights', progress=False,
+              echo=lambda s: None, data_dir=data)
+    return root / 'weights'
+
+
+def test_a_spec_round_trips_through_plain_data():
+    spec = paper_spec('bedroom')
+    again = RoomTypeSpec.from_dict(json.loads(json.dumps(spec.to_dict())))
+    assert again == spec
+    assert again.importance_order() == spec.importance_order()
+
+
+def test_specs_from_the_description_hold_what_the_pipeline_places(data):
+    desc = describe_dir(data)
+    specs = room_type_specs(desc)
+    assert set(specs) == {'bedroom', 'kitchen', 'living'}
+    for rt, spec in specs.items():
+        d = desc.room_types[rt]
+        tiers = {c.name: c.tier for c in d.categories}
+        assert 'painting' in tiers and 'painting' not in spec    # mounted: left out
+        for name in spec.names:
+            info = spec.info(name)
+            assert info.tier == tiers[name]
+            if info.tier == 'second':
+                assert info.supported_by and all(tiers[p] == 'first' for p in info.supported_by)
+        # the description's order, less what was left out
+        assert spec.importance_order() == tuple(n for n in d.importance_order if n in spec)
+        assert spec.size_cap == d.size_cap and spec.rooms == d.rooms
+
+
+def test_rooms_keep_only_placeable_objects(data):
+    spec = room_type_specs(describe_dir(data))['living']
+    rooms = load_rooms(data, spec)
+    assert len(rooms.scenes) == spec.rooms == len(rooms.names)
+    assert rooms.removed['category not placed by the pipeline'] > 0      # the paintings
+    for scene in rooms.scenes:
+        ids = {o.id: o for o in scene.objects}
+        for o in scene.objects:
+            assert o.category in spec
+            if o.support is None:
+                assert spec.info(o.category).tier == 'first'
+            else:
+                assert ids[o.support].category in spec.supports(o.category)
+
+
+def test_the_held_out_split_is_seeded_and_disjoint():
+    names = [f'room_{k}.json' for k in range(50)]
+    train_idx, held = split(names, 0)
+    assert len(held) == 10 and not set(train_idx) & set(held)
+    assert sorted(train_idx + held) == list(range(50))
+    assert split(list(reversed(names)), 0)[1] == [49 - k for k in reversed(held)]  # by name
+    assert split(names, 1)[1] != held
+
+
+def test_a_data_set_defines_room_types_for_a_while(data):
+    specs = room_type_specs(describe_dir(data))
+    with pytest.raises(UnknownRoomType, match="unknown room type 'kitchen'"):
+        resolve_room_type('kitchen')
+    with room_types_defined(specs.values()):
+        assert room_types()[-1] == 'kitchen'
+        assert room_spec('bedroom') == specs['bedroom'] != paper_spec('bedroom')
+        assert room_spec('Kitchen').names == specs['kitchen'].names
+        v = catalog.variants('fridge', 'kitchen')[0]
+        assert v.model_id == 'kitchen__fridge_00' and catalog.get(v.model_id) == v
+        with pytest.raises(RoomTypeConflict, match="'bedroom' is already defined"):
+            define_room_types([specs['living'].__class__.from_dict(
+                {**specs['bedroom'].to_dict(), 'rooms': 1})])
+    assert room_spec('bedroom') == paper_spec('bedroom')
+    with pytest.raises(KeyError):
+        catalog.get('kitchen__fridge_00')
+
+
+def test_trained_bundles_carry_their_category_set_and_furnish_rooms(data, kitchen_weights):
+    from scene_synth_ros.geometry import check_scene
+    from scene_synth_ros.networks.bundle import load_bundle
+    from scene_synth_ros.synth import Synthesizer
+    spec = room_type_specs(describe_dir(data))['kitchen']
+    bundle = load_bundle(kitchen_weights / 'kitchen.pt')      # defines the kitchen
+    assert bundle.spec == spec == room_spec('kitchen')
+    synth = Synthesizer(kitchen_weights)
+    assert synth.room_types == ['kitchen']
+    shell = load_rooms(data, spec).scenes[0].room
+    scene = synth.generate(shell, seed=3).scene
+    assert scene.objects, 'the tiny networks placed nothing'
+    for o in scene.objects:
+        assert o.category in spec and o.model_id.startswith('kitchen__')
+    assert check_scene(scene).ok
+    assert synth.generate(shell, seed=3).scene.to_dict() == scene.to_dict()
+
+
+def test_the_commands_take_the_data_sets_room_types_from_the_weights(
+        data, kitchen_weights, tmp_path, cli):
+    spec = room_type_specs(describe_dir(data))['kitchen']
+    layout = tmp_path / 'kitchen_layout.json'
+    layout.write_text(json.dumps(load_rooms(data, spec).scenes[0].room.to_dict()))
+    out = tmp_path / 'kitchen.json'
+    cli('generate', '--layout', layout, '--weights-dir', kitchen_weights, '--out', out,
+        '--seed', 1)
+    assert json.loads(out.read_text())['room']['room_type'] == 'kitchen'
+    r = cli('validate', out, ok=False)
+    assert r.returncode == 2 and "room.room_type 'kitchen' is not a known room type" in r.stderr
+    r = cli('validate', out, '--weights-dir', kitchen_weights)
+    assert 'physically valid' in r.stdout
+    r = cli('generate', '--room-type', 'kitchen', '--weights-dir', kitchen_weights, ok=False)
+    assert r.returncode == 2 and 'corpus makes no empty kitchen: give --layout' in r.stderr
+    r = cli('train', '--data', data, ok=False)
+    assert r.returncode == 2 and '--data needs --weights-dir' in r.stderr
+    r = cli('train', '--data', tmp_path, '--weights-dir', tmp_path / 'w', ok=False)
+    assert r.returncode == 2 and 'no dataset.yaml' in r.stderr
+
+
+def test_the_server_serves_a_data_sets_room_type(data, kitchen_weights):
+    import threading
+
+    from scene_synth_ros.server import ConfigError, SceneServer, ServerConfig
+    served, done = [], threading.Event()
+
+    def publish(s):
+        served.append(s)
+        done.set()
+    spec = room_type_specs(describe_dir(data))['kitchen']
+    with pytest.raises(ConfigError, match="room_type 'bedroom' has no weights in .*; they "
+                       'have kitchen'):
+        SceneServer(ServerConfig(weights_dir=str(kitchen_weights)), publish)
+    srv = SceneServer(ServerConfig(weights_dir=str(kitchen_weights), room_type='kitchen',
+                                   auto_generate=False, next_category='fridge'), publish)
+    try:
+        room = load_rooms(data, spec).scenes[0].room.to_dict()
+        assert srv.submit_layout(json.dumps(room))
+        assert done.wait(60)
+        ok, message = srv.request('next_object')
+        assert ok, message
+        scene = srv.scene
+        assert scene.room.room_type == 'kitchen'
+        assert [o.category for o in scene.objects] == ['fridge']
+        srv.reconfigure({'next_category': 'counter_top'})      # the data set's category
+        with pytest.raises(ConfigError, match="next_category 'spaceship' is not a category"):
+            srv.reconfigure({'next_category': 'spaceship'})
+    finally:
+        srv.close()
