@@ -87,6 +87,8 @@ PROGRESS = ('{desc}: {percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt} '
 # Rooms queued at each Ray actor, so that it starts the next room while the driver is still
 # writing the last one's files.
 IN_FLIGHT = 2
+LOST = ('its worker process died while this room or another one was in flight (killed, or '
+        'out of memory?); run the batch again to retry it')
 
 
 class BatchError(SceneSynthError):
@@ -396,13 +398,59 @@ class RayWorker:
         return self.worker.furnish(job)
 
 
+def _lost(job: RoomJob) -> RoomResult:
+    """The row of a room whose worker process died while it was in flight."""
+    return RoomResult({'index': job.index, 'room': job.name, 'seed': job.seed,
+                       'layout': job.layout, 'status': 'error',
+                       'error': LOST, 'seconds': None, 'worker': None, 'rss_mb': None,
+                       'peak_mb': None}, {})
+
+
 def _pool_results(spec: WorkerSpec, jobs: list[RoomJob], workers: int
                   ) -> Iterator[RoomResult]:
-    from .parallel import process_pool
-    with process_pool(workers, _start_pool_worker, (spec,)) as pool:
-        # A worker's results arrive in the order it made them, so models it sends once are
-        # written before a later room that names them.
-        yield from pool.imap_unordered(_pool_furnish, jobs, chunksize=1)
+    """The rooms furnished by ``workers`` processes. A worker that dies (killed, out of
+    memory) costs the rooms in flight, which fail with ``LOST``; the others go on in new
+    processes, unless a pool dies before furnishing anything."""
+    from concurrent.futures import FIRST_COMPLETED, wait
+    from concurrent.futures.process import BrokenProcessPool
+
+    from .parallel import process_executor
+    remaining = deque(jobs)
+    while remaining:
+        inflight: dict = {}             # future -> job, in the order they were submitted
+        produced = broken = False
+        pool = process_executor(workers, _start_pool_worker, (spec,))
+        try:
+            while (remaining or inflight) and not broken:
+                while remaining and len(inflight) < IN_FLIGHT * workers:
+                    job = remaining.popleft()
+                    inflight[pool.submit(_pool_furnish, job)] = job
+                done, _ = wait(inflight, return_when=FIRST_COMPLETED)
+                # In submission order: a worker's rooms come in the order it made them, so
+                # models it sends once are written before a later room that names them.
+                for future in [f for f in inflight if f in done]:
+                    job = inflight.pop(future)
+                    try:
+                        result = future.result()
+                    except BrokenProcessPool:
+                        broken = True
+                        yield _lost(job)
+                        continue
+                    produced = True
+                    yield result
+        finally:
+            # also when the driver stops early (an error, Ctrl-C): queued rooms are dropped
+            pool.shutdown(wait=True, cancel_futures=True)
+        for future, job in inflight.items():      # the pool broke while these were out
+            if not future.cancelled() and future.exception() is None:
+                produced = True
+                yield future.result()
+            else:
+                yield _lost(job)
+        if broken and not produced:
+            for job in remaining:
+                yield _lost(job)
+            return
 
 
 def _ray_results(spec: WorkerSpec, jobs: list[RoomJob], workers: int | None, address: str
@@ -707,8 +755,9 @@ def run_batch(cfg: BatchConfig, echo: Callable[[str], None] = print) -> BatchSum
                     else:
                         failed += 1
                         bar.set_postfix(failed=failed, refresh=False)
-                    peaks[row['worker']] = max(peaks.get(row['worker'], 0.0),
-                                               row['peak_mb'] or 0.0)
+                    if row['worker'] is not None:       # None: its worker died
+                        peaks[row['worker']] = max(peaks.get(row['worker'], 0.0),
+                                                   row['peak_mb'] or 0.0)
                     bar.update()
     finally:
         manifest.compact()

@@ -250,3 +250,52 @@ def test_ray_gives_the_rooms_of_the_process_pool(cli, tiny_weights, tmp_path):
     assert not _gone(before), 'Ray left processes behind'
     assert scenes(on_ray) == scenes(pool)
     assert [stable(r) for r in rows(on_ray)] == [stable(r) for r in rows(pool)]
+
+
+def _workers(pid: int) -> list[int]:
+    """The forked worker processes of ``pid``: its children with its own command line."""
+    own = Path(f'/proc/{pid}/cmdline').read_bytes()
+    out = []
+    for task in Path(f'/proc/{pid}/task').iterdir():
+        for child in map(int, (task / 'children').read_text().split()):
+            try:
+                if Path(f'/proc/{child}/cmdline').read_bytes() == own:
+                    out.append(child)
+            except OSError:             # gone already
+                pass
+    return out
+
+
+@pytest.mark.skipif(not Path('/proc/self/task').is_dir(), reason='needs Linux /proc')
+def test_a_killed_worker_costs_its_rooms_not_the_batch(tiny_weights, tmp_path):
+    """A worker process killed mid-batch (as the out-of-memory killer would) fails the
+    rooms it had in flight, with a sentence; the batch goes on in a new process and ends,
+    and a second run furnishes what was lost."""
+    import signal
+    import subprocess
+    import sys
+    out = tmp_path / 'out'
+    cmd = [sys.executable, '-m', 'scene_synth_ros.cli', *map(str, batch(
+        tiny_weights, '-n', 40, '--workers', 2, '--out', out))]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 120
+        while not ((out / 'manifest.jsonl').is_file() and len(rows(out)) >= 3):
+            assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
+            time.sleep(0.05)
+        victim = _workers(proc.pid)[0]
+        os.kill(victim, signal.SIGKILL)
+        stdout, stderr = proc.communicate(timeout=180)     # it ends: no hang
+    finally:
+        proc.kill()
+    assert proc.returncode == 1, stderr
+    made = rows(out)
+    assert sorted(r['index'] for r in made) == list(range(40))
+    lost = [r for r in made if r['status'] != 'ok']
+    assert 1 <= len(lost) <= 4                             # at most IN_FLIGHT x 2 workers
+    assert all('worker process died' in r['error'] for r in lost)
+    assert any(r['index'] > max(x['index'] for x in lost) for r in made if r['status'] == 'ok')
+    again = subprocess.run(cmd, capture_output=True, text=True, timeout=180)
+    assert again.returncode == 0, again.stderr
+    assert f'{len(lost)} furnished and 0 failed' in again.stdout
+    assert all(r['status'] == 'ok' for r in rows(out))
