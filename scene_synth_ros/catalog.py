@@ -131,6 +131,9 @@ class UserModel(ModelVariant):
     source: str = ''                                  # absolute path of the mesh file
     transform: tuple[float, ...] = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
                                     0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0)  # 4x4, row-major
+    # Absolute path of the mesh already in the object frame at ``size`` (binary STL), for
+    # RViz, which cannot apply ``transform`` to a mesh resource; '' when the catalog has none.
+    marker: str = ''
 
     @property
     def matrix(self) -> np.ndarray:

@@ -8,7 +8,10 @@ Colours come from ``plot`` so that RViz and the top-down PNGs agree.
 With ``style='mesh'`` an object is its catalog model's mesh as shipped in the package
 (``package://scene_synth_ros/meshes/<model id>.obj``, see ``meshes.shipped``), which RViz
 resolves on any machine where the package is installed; the marker's scale stretches it onto
-the object's box when the object's size is not the model's.
+the object's box when the object's size is not the model's. An object whose model is one of
+the user's (a ``catalog.Catalog`` passed in) shows the user's mesh instead, from the STL
+that ``scene-synth catalog build`` wrote (``meshes.user_marker``), painted in the category's
+colour since STL has no materials.
 """
 from __future__ import annotations
 
@@ -19,8 +22,9 @@ from matplotlib.colors import to_rgba
 import shapely
 
 from . import plot
+from .catalog import Catalog
 from .export import WALL_THICKNESS, wall_boxes
-from .meshes import mesh_scale, package_uri, shipped_variant
+from .meshes import file_uri, mesh_scale, package_uri, shipped_variant, user_marker
 from .scene import Opening, PlacedObject, Room, Scene
 
 MARKER_STYLES = ('cube', 'mesh')
@@ -55,6 +59,7 @@ class MarkerSpec:
     text: str = ''
     mesh_resource: str = ''
     points: tuple[Vec3, ...] = ()
+    mesh_materials: bool = True   # the mesh's own materials; False: ``color`` paints it
 
     def __post_init__(self):
         if self.kind not in MARKER_KINDS:
@@ -104,8 +109,15 @@ def _opening_marker(room: Room, op: Opening, ns: str, k: int, color: RGBA) -> Ma
                       (op.width, OPENING_THICKNESS, op.height), color)
 
 
-def _object_marker(obj: PlacedObject, k: int, style: str) -> MarkerSpec:
+def _object_marker(obj: PlacedObject, k: int, style: str,
+                   models: Catalog | None = None) -> MarkerSpec:
     x, y, z = obj.position
+    user = user_marker(obj, models) if style == 'mesh' else None
+    if user is not None:
+        # The STL is in the object frame at the model's size, like the shipped meshes.
+        return MarkerSpec(obj.category, k, 'mesh', (x, y, z), obj.yaw, mesh_scale(obj, user),
+                          category_color(obj.category), mesh_resource=file_uri(user.marker),
+                          mesh_materials=False)
     variant = shipped_variant(obj) if style == 'mesh' else None
     if variant is None:   # cube style, or a category without any mesh: a box
         return MarkerSpec(obj.category, k, 'cube', (x, y, z + obj.height / 2), obj.yaw,
@@ -116,11 +128,12 @@ def _object_marker(obj: PlacedObject, k: int, style: str) -> MarkerSpec:
                       category_color(obj.category), mesh_resource=package_uri(variant.model_id))
 
 
-def scene_markers(scene: Scene, style: str = 'cube') -> list[MarkerSpec]:
+def scene_markers(scene: Scene, style: str = 'cube',
+                  catalog: Catalog | None = None) -> list[MarkerSpec]:
     """The markers of a room and its objects: floor, walls, doors, windows, one marker per
     object (a box, or with ``style='mesh'`` its catalog mesh shipped in the package, as a
-    ``package://`` URI that RViz resolves on any machine with the package) and one label per
-    object."""
+    ``package://`` URI that RViz resolves on any machine with the package, or the user's mesh
+    of ``catalog`` as a ``file://`` URI) and one label per object."""
     if style not in MARKER_STYLES:
         raise ValueError(f'unknown marker style {style!r}; use one of '
                          f'{", ".join(MARKER_STYLES)}')
@@ -134,7 +147,7 @@ def scene_markers(scene: Scene, style: str = 'cube') -> list[MarkerSpec]:
     seen: dict[str, int] = {}
     for obj in scene.objects:
         k = seen[obj.category] = seen.get(obj.category, -1) + 1
-        out.append(_object_marker(obj, k, style))
+        out.append(_object_marker(obj, k, style, catalog))
     out += [MarkerSpec('labels', i, 'text', (o.position[0], o.position[1], o.top + LABEL_HEIGHT),
                        0.0, (0.0, 0.0, LABEL_HEIGHT), LABEL_RGBA, text=f'{o.id}')
             for i, o in enumerate(scene.objects)]

@@ -153,8 +153,10 @@ class SceneSynthNode(Node):
                           callback_group=MutuallyExclusiveCallbackGroup())
         self.get_logger().info(
             f'ready: {len(PARAMETERS)} parameters, weights from '
-            f'{config.weights_dir or "the package"}, device {config.device}, torch threads '
-            f'{config.torch_threads}; waiting for ~/room_layout or ~/room_polygon')
+            f'{config.weights_dir or "the package"}, models from '
+            f'{config.catalog_dir or "the procedural catalog"}, device {config.device}, '
+            f'torch threads {config.torch_threads}; waiting for ~/room_layout or '
+            f'~/room_polygon')
 
     # ---- inputs ---------------------------------------------------------------------------
     def _on_layout(self, msg: String) -> None:
@@ -203,7 +205,7 @@ class SceneSynthNode(Node):
         clear = Marker(action=Marker.DELETEALL)
         clear.header.frame_id, clear.header.stamp = cfg.frame_id, stamp
         array.markers.append(clear)
-        for spec in scene_markers(served.scene, cfg.marker_style):
+        for spec in scene_markers(served.scene, cfg.marker_style, served.catalog):
             m = Marker(ns=spec.ns, id=spec.id, type=_KINDS[spec.kind], action=Marker.ADD)
             m.header.frame_id, m.header.stamp = cfg.frame_id, stamp
             m.pose = _pose(spec.position, spec.yaw)
@@ -212,7 +214,8 @@ class SceneSynthNode(Node):
                                 a=spec.color[3])
             m.text = spec.text
             m.mesh_resource = spec.mesh_resource
-            m.mesh_use_embedded_materials = bool(spec.mesh_resource)
+            # The shipped OBJs have their materials; a user's STL is painted by ``color``.
+            m.mesh_use_embedded_materials = bool(spec.mesh_resource) and spec.mesh_materials
             m.points = [Point(x=p[0], y=p[1], z=p[2]) for p in spec.points]
             array.markers.append(m)
         poses = PoseArray()

@@ -23,7 +23,8 @@ import threading
 import time
 from typing import Any, Callable
 
-from . import robot
+from . import catalog, robot
+from .catalog import PROCEDURAL, Catalog
 from .categories import (
     ROOM_TYPE_ALIASES,
     ROOM_TYPES,
@@ -31,7 +32,14 @@ from .categories import (
     resolve_room_type,
     room_types,
 )
-from .errors import SceneSynthError, UnknownRoomType, quoted, sentence, with_article
+from .errors import (
+    CatalogError,
+    SceneSynthError,
+    UnknownRoomType,
+    quoted,
+    sentence,
+    with_article,
+)
 from .export import FORMATS as EXPORT_FORMATS
 from .export import UnknownFormat, parse_formats
 from .files import write_atomic
@@ -44,6 +52,7 @@ from .synth import MODULES, SynthConfig, SynthesisCancelled, Synthesizer, check_
 
 OK, WARN, ERROR = 0, 1, 2               # the levels of diagnostic_msgs/DiagnosticStatus
 DEVICES = ('auto', 'cpu', 'cuda')
+CATALOG_FILE = 'catalog.json'           # what `scene-synth catalog build FOLDER` writes
 SERVICE_TIMEOUT = 120.0                 # seconds a service waits for the worker
 
 
@@ -57,6 +66,7 @@ class ServerConfig:
     max_objects: int = 30
     device: str = 'auto'
     weights_dir: str = ''               # '' = the weights shipped in the package
+    catalog_dir: str = ''               # '' = the procedural catalog; else FOLDER/catalog.json
     frame_id: str = 'map'
     marker_style: str = 'cube'
     auto_generate: bool = True          # furnish as soon as a layout arrives
@@ -89,6 +99,9 @@ PARAMETERS: dict[str, tuple[str, Any, bool]] = {
     'device': ('torch device for the networks', DEVICES, False),
     'weights_dir': ("directory of <room type>.pt bundles; '' = the shipped weights", None,
                     False),
+    'catalog_dir': ('folder holding a catalog.json written by `scene-synth catalog build` '
+                    "(or that file): your models for the categories it covers; '' = the "
+                    'procedural catalog', None, False),
     'frame_id': ('frame of the published markers, poses and of incoming polygons', None,
                  False),
     'marker_style': ('objects as boxes (cube) or catalog meshes (mesh)', MARKER_STYLES, False),
@@ -129,8 +142,9 @@ class ConfigError(SceneSynthError, ValueError):
     """A parameter value that cannot be used, said in one sentence."""
 
 
-# Checked once the weights are loaded: their data set may define room types and categories.
-BY_WEIGHTS = ('room_type', 'next_category')
+# Checked once the weights are loaded: their data set may define room types and categories
+# (a user catalog may hold models of those categories).
+BY_WEIGHTS = ('room_type', 'next_category', 'catalog_dir')
 
 
 def _check_weights_hold(config: ServerConfig, synth: Synthesizer) -> None:
@@ -139,6 +153,25 @@ def _check_weights_hold(config: ServerConfig, synth: Synthesizer) -> None:
         raise ConfigError(f'room_type {config.room_type!r} has no weights in '
                           f'{config.weights_dir or "the package"}; they have '
                           f'{", ".join(synth.room_types) or "none"}')
+
+
+def load_catalog_dir(value: str) -> Catalog:
+    """The catalog the parameter ``catalog_dir`` names: the procedural one for '', else the
+    ``catalog.json`` in that folder (or the file itself); ConfigError saying what is wrong."""
+    if not value:
+        return PROCEDURAL
+    path = Path(value).expanduser()
+    if path.is_dir():
+        path = path / CATALOG_FILE
+        if not path.is_file():
+            raise ConfigError(f'catalog_dir {quoted(value)} holds no {CATALOG_FILE} '
+                              f'(`scene-synth catalog build FOLDER` writes one)')
+    elif not path.exists():
+        raise ConfigError(f'catalog_dir {quoted(value)} does not exist')
+    try:
+        return catalog.load(path)
+    except CatalogError as e:
+        raise ConfigError(f'catalog_dir {quoted(value)} cannot be used: {e}') from None
 
 
 def check(name: str, value: Any) -> Any:
@@ -197,15 +230,23 @@ def _check_text(name: str, value: Any, limits) -> str:
             return ','.join(parse_formats(value))
         except UnknownFormat as e:
             raise ConfigError(str(e)) from None
-    if name == 'export_dir' and value:
-        p = Path(value).expanduser()
-        try:
-            p.mkdir(parents=True, exist_ok=True)
-        except OSError as e:
-            raise ConfigError(f'{name} {value!r} cannot be created: {e.strerror}') from None
-        if not os.access(p, os.W_OK):
-            raise ConfigError(f'{name} {value!r} is not writable')
+    if name in ('catalog_dir', 'export_dir') and value:
+        _check_folder(name, value)
     return value
+
+
+def _check_folder(name: str, value: str) -> None:
+    """catalog_dir: its catalog reads; export_dir: it exists (made now) and is writable."""
+    if name == 'catalog_dir':
+        load_catalog_dir(value)
+        return
+    p = Path(value).expanduser()
+    try:
+        p.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise ConfigError(f'{name} {value!r} cannot be created: {e.strerror}') from None
+    if not os.access(p, os.W_OK):
+        raise ConfigError(f'{name} {value!r} is not writable')
 
 
 @dataclass
@@ -221,6 +262,7 @@ class Served:
     timings: dict[str, float] = field(default_factory=dict)
     json: str = ''                       # the scene as published on ~/scene
     robot: RobotReport | None = None     # the robot promise, when synthesis measured it
+    catalog: Catalog = PROCEDURAL        # whose model ids the scene holds (catalog_dir)
 
 
 @dataclass
@@ -298,6 +340,7 @@ class SceneServer:
         _check_weights_hold(config, self._synth)
         robot_of(config)
         self.config = config
+        self._catalog = load_catalog_dir(config.catalog_dir)    # read once by check: cached
         self._publish = publish
         self._on_status = on_status or (lambda s: None)
         self._logger = log or (lambda level, text: None)
@@ -344,10 +387,15 @@ class SceneServer:
         new = replace(new, **late)
         _check_weights_hold(new, synth or self._synth)
         robot_of(new)
+        # Read again when it changed, or when other weights may define its categories.
+        models = load_catalog_dir(new.catalog_dir) \
+            if 'catalog_dir' in late or synth is not None else None
         with self._lock:
             self.config = new
             if synth is not None:
                 self._synth = synth
+            if models is not None:
+                self._catalog = models
             if 'seed' in checked:
                 self._next_seed = new.seed
 
@@ -355,8 +403,10 @@ class SceneServer:
     def submit_layout(self, payload: Any, source: str = 'room_layout') -> bool:
         """Queue a room layout (JSON text or dict); False, with the reason on the status,
         when it is rejected."""
+        with self._lock:
+            models = self._catalog
         try:
-            scene = parse_room_layout(payload)
+            scene = parse_room_layout(payload, models)
             check_room_fits(scene.room)
         except SceneSynthError as e:
             self._reject(f'{source}: {e}')
@@ -519,7 +569,7 @@ class SceneServer:
             self._supersede(job)
             return
         with self._lock:
-            cfg, synth, current = self.config, self._synth, self._scene
+            cfg, synth, current, models = self.config, self._synth, self._scene, self._catalog
         if job.kind == 'layout':
             base = job.scene
         elif current is None:
@@ -528,24 +578,26 @@ class SceneServer:
             return
         else:
             base = current
+        base = in_catalog(base, models)
         if job.kind == 'reset':
             scene = Scene(base.room, [], _answered(base.meta))
-            self._commit(job, Served(scene, 'reset', base.meta.get('seed')))
+            self._commit(job, Served(scene, 'reset', base.meta.get('seed'), catalog=models))
             job.ok, job.message = True, '{"objects": 0}'
             return
         if job.kind == 'layout' and not cfg.auto_generate:
             scene = base.copy()
             scene.meta = {'generator': 'scene_synth_ros', 'seed': None, **base.meta}
-            self._commit(job, Served(scene, job.source, None))
+            self._commit(job, Served(scene, job.source, None, catalog=models))
             job.ok = True
             return
         synth.config = replace(synth.config, location_temperature=cfg.location_temperature,
-                               max_objects=cfg.max_objects, robot=robot_of(cfg))
+                               max_objects=cfg.max_objects, robot=robot_of(cfg),
+                               catalog=models)
         seed = self._take_seed()
         self._set_status(busy=True)
         try:
             if job.kind == 'next_object':
-                self._next_object(job, synth, base, seed, cfg.next_category)
+                self._next_object(job, synth, base, seed, cfg.next_category, models)
                 return
             if job.kind == 'suggest':
                 found = synth.suggest(base, cfg.suggestions, seed)
@@ -565,7 +617,8 @@ class SceneServer:
             job.message = str(e)
             return
         served = Served(result.scene, job.source or job.kind, seed, result.added,
-                        result.seconds, result.stopped, result.timings, robot=result.robot)
+                        result.seconds, result.stopped, result.timings, robot=result.robot,
+                        catalog=models)
         if self._commit(job, served):
             job.ok = True
             job.message = _json({'seed': seed, 'objects': len(result.scene),
@@ -574,7 +627,7 @@ class SceneServer:
                                  'seconds': round(result.seconds, 4)})
 
     def _next_object(self, job: _Job, synth: Synthesizer, base: Scene, seed: int,
-                     category: str) -> None:
+                     category: str, models: Catalog) -> None:
         t0 = time.perf_counter()
         try:
             obj = synth.next_object(base, seed, category or None)
@@ -591,7 +644,7 @@ class SceneServer:
         scene.objects.append(obj)
         scene.meta = {**_answered(scene.meta), 'generator': 'scene_synth_ros', 'seed': seed}
         if self._commit(job, Served(scene, 'next_object', seed, [obj],
-                                   time.perf_counter() - t0)):
+                                   time.perf_counter() - t0, catalog=models)):
             job.ok, job.message = True, _json(obj.to_dict())
 
     def _take_seed(self) -> int:
@@ -608,7 +661,8 @@ class SceneServer:
         # one more object, a layout published as given) are measured here.
         promise = served.robot or robot.report(served.scene, robot_of(self.config))
         served.scene.meta['robot'] = promise.to_dict()
-        served.json = dump_scene(served.scene)   # never publish what the schema would refuse
+        # Never publish what the schema would refuse; the model ids are the catalog's.
+        served.json = dump_scene(served.scene, served.catalog)
         with self._lock:
             stale = self._stale(job)
             if not stale:
@@ -640,9 +694,9 @@ class SceneServer:
             write_atomic(directory / f'{stem}.json', served.json + '\n')
             for fmt in parse_formats(self.config.export_formats):
                 write(served.scene, fmt, directory / f'{stem}{FORMATS[fmt].suffix}',
-                      directory / 'meshes')
-        except OSError as e:
-            text = f'export to {directory} failed: {e.strerror or e}'
+                      directory / 'meshes', catalog=served.catalog)
+        except (OSError, CatalogError) as e:    # CatalogError: a user's mesh gone since
+            text = f'export to {directory} failed: {getattr(e, "strerror", None) or e}'
             self._log('warn', text)
             self._set_status(level=WARN, message=text, last_error=text)
 
@@ -683,6 +737,23 @@ def robot_of(config: ServerConfig) -> Robot:
         return Robot(config.robot_radius, config.robot_reach, config.robot_clearance)
     except ValueError as e:
         raise ConfigError(str(e)) from None
+
+
+def in_catalog(scene: Scene, models: Catalog) -> Scene:
+    """``scene`` with each model id that ``models`` lacks replaced by the nearest model of
+    its category: a room parsed or furnished before catalog_dir changed keeps its objects and
+    shows the new catalog's models, and its JSON still validates."""
+    def known(o: PlacedObject) -> bool:
+        try:
+            return models.get(o.model_id).category == o.category
+        except KeyError:
+            return False
+    if all(known(o) for o in scene.objects):
+        return scene
+    out = scene.copy()
+    out.objects = [o if known(o) else replace(o, model_id=models.nearest(
+        o.category, o.width, o.depth, scene.room.room_type).model_id) for o in out.objects]
+    return out
 
 
 def _answered(meta: dict) -> dict:

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from collections import Counter
+from dataclasses import replace
 import math
 from pathlib import Path
 import subprocess
@@ -384,3 +385,55 @@ def test_markers_module_needs_no_ros():
                           timeout=120)
     assert done.returncode == 0, done.stderr
     assert int(done.stdout) == len(scene_markers(bedroom()))
+
+
+# ---- the user's own furniture -----------------------------------------------------------------
+def _user_bed(catalog_file: Path, size=(1.6, 2.0, 1.0)) -> tuple[Scene, catalog.Catalog]:
+    """The partial bedroom's room with the user's bed at ``size`` (not its own)."""
+    models = catalog.load(catalog_file)
+    obj = PlacedObject('double_bed_0', 'double bed', 'oak_bed', (2.1, 2.0, 0.0), 0.6, size)
+    return Scene(bedroom().room, [obj]), models
+
+
+def test_a_user_model_is_its_stl_posed_scaled_and_coloured(tmp_path):
+    from test_user_catalog import make_real_set
+    _, path = make_real_set(tmp_path)
+    scene, models = _user_bed(path)
+    bed = models.get('oak_bed')
+    [m] = object_markers(scene_markers(scene, 'mesh', models))
+    obj = scene.objects[0]
+    assert m.kind == 'mesh' and m.mesh_resource == 'file://' + bed.marker
+    assert Path(bed.marker).is_absolute() and Path(bed.marker).is_file()
+    assert not m.mesh_materials                   # STL has none: the category's colour
+    assert m.color == category_color('double bed') and m.ns == 'double bed'
+    # The scale in the mesh's axes (x depth, y width, z height), as for shipped meshes.
+    assert m.scale == pytest.approx((2.0 / 2.1, 1.6 / 1.7, 1.0 / 1.1))
+    assert m.position == pytest.approx(obj.position) and m.yaw == pytest.approx(obj.yaw)
+    mesh = trimesh.load(bed.marker, force='mesh', process=False).apply_scale(m.scale)
+    lo, hi = mesh.bounds
+    assert lo == pytest.approx((-obj.depth / 2, -obj.width / 2, 0.0), abs=1e-4)
+    assert hi == pytest.approx((obj.depth / 2, obj.width / 2, obj.height), abs=1e-4)
+    assert posed_footprint(m, lo, hi) == pytest.approx(obj.corners(), abs=1e-4)
+    # Cube style and procedural models are as before; without the catalog the bed is the
+    # nearest procedural model.
+    [cube] = object_markers(scene_markers(scene, 'cube', models))
+    assert cube.kind == 'cube' and cube.mesh_resource == ''
+    [plain] = object_markers(scene_markers(scene, 'mesh'))
+    assert plain.mesh_resource == PACKAGE_MESHES + shipped_name(
+        catalog.nearest('double bed', 1.6, 2.0).model_id) and plain.mesh_materials
+    room = bedroom()
+    assert scene_markers(room, 'mesh', models) == scene_markers(room, 'mesh')
+
+
+def test_a_user_model_without_its_stl_falls_back_to_a_procedural_mesh(tmp_path):
+    from test_user_catalog import make_real_set
+    _, path = make_real_set(tmp_path)
+    scene, models = _user_bed(path)
+    nearest = catalog.nearest('double bed', 1.6, 2.0)
+    older = catalog.Catalog([replace(m, marker='') for m in models.user.values()])
+    Path(models.get('oak_bed').marker).unlink()      # removed since the build
+    for cat in (models, older):                      # or a catalog built before markers
+        [m] = object_markers(scene_markers(scene, 'mesh', cat))
+        assert m.mesh_resource == PACKAGE_MESHES + shipped_name(nearest.model_id)
+        assert m.mesh_materials
+        assert_mesh_covers_the_object(m, scene.objects[0])

@@ -266,7 +266,7 @@ def test_parameters_change_at_run_time_and_bad_values_are_refused(node, tmp_path
     refused = client.set_parameters({'torch_threads': 2})
     assert refused
     refused = client.set_parameters({'weights_dir': str(tmp_path)})
-    assert refused and 'no such weights file' in refused[0]
+    assert refused and 'no weights bundles' in refused[0]
     assert client.get_parameters(['location_temperature', 'room_type']) == {
         'location_temperature': 0.8, 'room_type': 'bedroom'}
 
@@ -294,6 +294,44 @@ def test_parameters_change_at_run_time_and_bad_values_are_refused(node, tmp_path
         assert client.set_parameters({'marker_style': 'cube', 'frame_id': 'map',
                                       'room_type': 'bedroom', 'wall_height': 2.6,
                                       'export_dir': ''}) == []
+
+
+def test_catalog_dir_shows_the_users_furniture_as_its_own_meshes(node, tmp_path):
+    from test_user_catalog import make_real_set
+
+    from scene_synth_ros import catalog
+    from scene_synth_ros.markers import category_color
+    root, path = make_real_set(tmp_path)
+    client = node.client
+    refused = client.set_parameters({'catalog_dir': str(tmp_path / 'nowhere')})
+    assert refused and 'does not exist' in refused[0]
+    assert client.set_parameters({'catalog_dir': str(root), 'marker_style': 'mesh'}) == []
+    try:
+        models = catalog.load(path)
+        for _ in range(4):          # a bedroom without a bed, stand, wardrobe or desk: again
+            before = client.counts()
+            client.publish_layout(LAYOUT, wait=False)
+            d, markers, _ = client.wait_room(before)
+            scene = parse_scene(d, models)                  # the scene reads with the catalog
+            objs = [m for m in markers.markers[1:]
+                    if m.ns not in ('floor', 'walls', 'doors', 'windows', 'labels')]
+            pairs = list(zip(scene.objects, objs, strict=True))
+            if any(o.model_id in models.user for o in scene.objects):
+                break
+        for o, m in pairs:
+            assert m.type == MARKER_MESH
+            user = models.user_model(o.model_id)
+            if user is None:
+                assert m.mesh_resource.startswith('package://') and m.mesh_use_embedded_materials
+                continue
+            # The user's own mesh, painted in its category's colour (STL has no materials).
+            assert m.mesh_resource == 'file://' + user.marker and Path(user.marker).is_file()
+            assert not m.mesh_use_embedded_materials
+            assert (m.color.r, m.color.g, m.color.b, m.color.a) == pytest.approx(
+                category_color(o.category))
+        assert any(models.user_model(o.model_id) for o, _ in pairs)
+    finally:
+        assert client.set_parameters({'catalog_dir': '', 'marker_style': 'cube'}) == []
 
 
 def test_a_new_layout_supersedes_the_one_being_furnished(node):

@@ -530,3 +530,99 @@ def test_status_and_sources_name_the_topic_and_read_as_english(server):
     served = server.rec.wait(1)
     assert served.source == 'room_polygon'
     assert server.status.message.endswith('objects in an office')
+
+
+# ---- catalog_dir: the user's own furniture ---------------------------------------------------
+@pytest.fixture
+def furniture(tmp_path):
+    """(folder, catalog file) of the user catalog tests' bed, stand, wardrobe and desk."""
+    from test_user_catalog import make_real_set
+    return make_real_set(tmp_path / 'furniture')
+
+
+def _user_server(rec, **config):
+    return SceneServer(ServerConfig(torch_threads=1, **config), rec.publish, rec.status,
+                       rec.log, rec.seed)
+
+
+def test_catalog_dir_furnishes_publishes_and_exports_the_users_models(furniture, tmp_path):
+    import trimesh
+
+    from scene_synth_ros import catalog
+    from scene_synth_ros.schema import SceneValidationError
+    root, path = furniture
+    rec = Recorder()
+    srv = _user_server(rec, catalog_dir=str(root), export_dir=str(tmp_path / 'export'),
+                       export_formats='gltf')
+    try:
+        models = catalog.load(path)
+        covered = set(models.user_categories)
+        assert srv.submit_layout(LAYOUT)
+        served = rec.wait(1)
+        assert served.catalog is models
+        own = [o for o in served.scene.objects if o.category in covered]
+        assert own and all(o.model_id in models.user for o in own)
+        assert all(o.model_id not in models.user for o in served.scene.objects
+                   if o.category not in covered)
+        # The published JSON reads with the catalog (and only with it).
+        assert parse_scene(served.json, models).to_dict() == served.scene.to_dict()
+        with pytest.raises(SceneValidationError, match='is not a catalog model id'):
+            parse_scene(served.json)
+        srv.reconfigure({'next_category': 'stand'})
+        assert srv.request('reset')[0]                  # after room 1's export
+        ok, message = srv.request('next_object')
+        assert ok and json.loads(message)['model_id'] == 'night_left', message
+        glb = trimesh.load(tmp_path / 'export' / 'room_00001.glb')
+        for o in own:                                   # the user's meshes, not sketches
+            assert any(g.startswith(o.model_id) for g in glb.geometry), o.model_id
+        # A partial room that names the user's models is read with the catalog.
+        srv.reconfigure({'auto_generate': False})
+        partial = json.loads(PARTIAL)
+        partial['objects'][0]['model_id'] = 'oak_bed'
+        assert srv.submit_layout(json.dumps(partial))
+        assert rec.wait(4).scene.objects[0].model_id == 'oak_bed'
+    finally:
+        srv.close()
+
+
+def test_a_bad_catalog_dir_is_refused_in_one_sentence_and_the_old_one_kept(furniture,
+                                                                            tmp_path):
+    from scene_synth_ros import catalog
+    from scene_synth_ros.errors import MAX_SENTENCE
+    root, path = furniture
+    empty = tmp_path / 'empty'
+    empty.mkdir()
+    broken = tmp_path / 'broken'
+    broken.mkdir()
+    (broken / 'catalog.json').write_text('{"format": "something else"}')
+    bad = {str(tmp_path / 'nowhere'): 'does not exist',
+           str(empty): 'holds no catalog.json',
+           str(broken): 'cannot be used: .* is not a catalog written by'}
+    for value, says in bad.items():
+        with pytest.raises(ConfigError, match=f'catalog_dir .*{says}') as e:
+            SceneServer(ServerConfig(catalog_dir=value), lambda s: None)
+        assert '\n' not in str(e.value) and len(str(e.value)) <= MAX_SENTENCE
+    rec = Recorder()
+    srv = _user_server(rec, catalog_dir=str(path), next_category='stand',   # the file too
+                       auto_generate=False)
+    try:
+        srv.submit_layout(PARTIAL)                      # a bed and a stand, as given
+        rec.wait(1)
+        for value, says in bad.items():
+            with pytest.raises(ConfigError, match=says):
+                srv.reconfigure({'catalog_dir': value, 'max_objects': 5})
+        assert srv.config.catalog_dir == str(path) and srv.config.max_objects == 30
+        ok, message = srv.request('next_object')        # still the user's stands
+        assert ok and json.loads(message)['model_id'] == 'night_left'
+        # Back to the procedural catalog: the room keeps its objects, their user models
+        # replaced by the nearest procedural ones, so its JSON reads without a catalog.
+        assert rec.wait(2).scene.objects[-1].model_id == 'night_left'
+        srv.reconfigure({'catalog_dir': '', 'next_category': 'wardrobe'})
+        ok, message = srv.request('next_object')
+        assert ok and json.loads(message)['model_id'].startswith('wardrobe_'), message
+        scene = parse_scene(rec.wait(3).json)
+        assert [o.id for o in scene.objects][:-1] == [o.id for o in rec.served[1].scene.objects]
+        assert scene.objects[2].model_id == catalog.nearest('stand', *scene.objects[2].size[:2]
+                                                            ).model_id
+    finally:
+        srv.close()

@@ -123,6 +123,46 @@ def test_a_model_lands_in_the_package_frame(tmp_path, name, up, front, says, per
     assert len(back) and back[:, 0].max() < -0.18
 
 
+@pytest.mark.parametrize('name,up,front,says,per_metre,shift', CASES)
+def test_the_rviz_mesh_is_the_model_in_the_package_frame(tmp_path, name, up, front, says,
+                                                         per_metre, shift):
+    # The STL that markers show: RViz gives a mesh resource a pose and a scale only, so
+    # the file itself must be turned, centred, in metres and at the measured size.
+    save(in_file_frame(chair_ours(), up, front, 1 / per_metre, shift), tmp_path / name)
+    manifest(tmp_path, [{'file': name, 'category': 'straight chair', **says}])
+    report = build_catalog(tmp_path)
+    path = write_catalog(tmp_path / 'out' / 'catalog.json', report.models, report.lines)
+    stem = Path(name).stem
+    assert json.loads(path.read_text())['models'][0]['marker'] == f'markers/{stem}.stl'
+    (m,) = read_catalog(path).user.values()
+    assert m.marker == str((tmp_path / 'out' / 'markers' / f'{stem}.stl').resolve())
+    data = Path(m.marker).read_bytes()
+    mesh = trimesh.load(m.marker, force='mesh', process=False)
+    assert len(data) == 84 + 50 * len(mesh.faces)                # binary STL
+    w, d, h = m.size
+    assert mesh.bounds[0] == pytest.approx((-d / 2, -w / 2, 0.0), abs=TOL)
+    assert mesh.bounds[1] == pytest.approx((d / 2, w / 2, h), abs=TOL)
+    back = mesh.vertices[mesh.vertices[:, 2] > 0.5]              # the backrest, behind
+    assert len(back) and back[:, 0].max() < -0.18
+
+
+def test_a_catalog_without_rviz_meshes_still_reads(tmp_path):
+    # Catalogs written before the markers existed have no "marker": they read as before.
+    save(chair_ours(), tmp_path / 'c.stl')
+    manifest(tmp_path, [{'file': 'c.stl', 'category': 'straight chair'}])
+    report = build_catalog(tmp_path)
+    # A mesh that cannot be read when the catalog is written: the catalog, without its STL.
+    (tmp_path / 'c.stl').rename(tmp_path / 'moved.stl')
+    path = write_catalog(tmp_path / 'catalog.json', report.models, report.lines)
+    data = json.loads(path.read_text())
+    assert 'marker' not in data['models'][0] and not (tmp_path / 'markers').exists()
+    assert read_catalog(path).get('c').marker == ''
+    data['models'][0]['marker'] = 3
+    path.write_text(json.dumps(data))
+    with pytest.raises(CatalogError, match=r'models\[0\] is broken \(marker must be a path'):
+        read_catalog(path)
+
+
 def test_defaults_of_the_manifest_apply_to_every_model(tmp_path):
     chair = chair_ours()
     for k in range(2):
@@ -371,9 +411,14 @@ REAL = {  # id: (category, size (w, d, h))
 
 @pytest.fixture(scope='module')
 def real_set(tmp_path_factory) -> tuple[Path, Path]:
+    """(folder, catalog file) of ``make_real_set``."""
+    return make_real_set(tmp_path_factory.mktemp('furniture'))
+
+
+def make_real_set(root: Path) -> tuple[Path, Path]:
     """(folder, catalog file) of a bed (GLB, y up), a nightstand (OBJ in cm, front -x), a
-    wardrobe (STL, z up, off-centre) and a desk (GLB of five meshes, z up, front +y)."""
-    root = tmp_path_factory.mktemp('furniture')
+    wardrobe (STL, z up, off-centre) and a desk (GLB of five meshes, z up, front +y), with
+    the catalog written to ``root/catalog.json``."""
     save(in_file_frame(double_bed(), '+y', '+z', shift=(0.0, 0.0, 3.0)),
          root / 'beds' / 'oak_bed.glb')
     stand = trimesh.util.concatenate([_box((-0.2, -0.25, 0.0), (0.2, 0.25, 0.55)),
@@ -523,6 +568,8 @@ def test_catalog_build_generate_and_export_commands(cli, real_set, tmp_path):
     r = cli('catalog', 'build', root, '--out', out)
     assert 'kept 4 models of 4 categories' in r.stdout and f'wrote {out}' in r.stdout
     assert [m['model_id'] for m in json.loads(out.read_text())['models']] == list(REAL)
+    assert sorted(p.name for p in (tmp_path / 'markers').iterdir()) == \
+        sorted(f'{k}.stl' for k in REAL)                         # the meshes RViz shows
     r = cli('catalog', 'list', '--catalog', out)
     assert 'oak_bed' in r.stdout and 'sofa_00' in r.stdout and 'double_bed_00' not in r.stdout
     scene = tmp_path / 'room.json'

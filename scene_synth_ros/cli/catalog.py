@@ -61,5 +61,5 @@ def _build(args) -> int:
         write_catalog(out, report.models, report.lines)
     except OSError as e:
         raise UserError(f'cannot write {out}: {e.strerror or e}') from None
-    print(f'wrote {out}')
+    print(f'wrote {out} (and the meshes RViz shows, in {out.parent / "markers"})')
     return 0

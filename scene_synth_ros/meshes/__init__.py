@@ -31,19 +31,21 @@ from .materials import BOOK_COVERS, MATERIALS, Material
 from .preview import render_image, render_preview, save_contact_sheet
 from .registry import BUILDERS, build_mesh, build_parts, builder_for
 from .shipped import (
+    file_uri,
     mesh_scale,
     package_uri,
     shipped_files,
     shipped_name,
     shipped_variant,
+    user_marker,
     write_shipped_meshes,
 )
 
 __all__ = [
     'BOOK_COVERS', 'BUILDERS', 'MATERIALS', 'Builder', 'Material', 'Part', 'build_mesh',
-    'build_parts', 'builder_for', 'builds', 'export_catalog', 'export_model',
+    'build_parts', 'builder_for', 'builds', 'export_catalog', 'export_model', 'file_uri',
     'material_meshes', 'mesh_path', 'mesh_scale', 'model_scene', 'mtl_text', 'obj_text',
     'object_transform', 'package_uri', 'render_image', 'render_preview', 'save_contact_sheet',
-    'scene_mesh', 'shipped_files', 'shipped_name', 'shipped_variant', 'variant_for',
-    'write_shipped_meshes',
+    'scene_mesh', 'shipped_files', 'shipped_name', 'shipped_variant', 'user_marker',
+    'variant_for', 'write_shipped_meshes',
 ]

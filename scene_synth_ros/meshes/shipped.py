@@ -12,13 +12,19 @@ An object that shows a catalog model at another size, or whose model id the cata
 have, uses a shipped mesh as well: its own variant, or the nearest variant of its category,
 stretched by the marker's scale (``mesh_scale``). ``scripts/build_meshes.py`` writes the
 folder; the files are a pure function of the catalog, byte for byte.
+
+A model of the user's catalog (``catalog.UserModel``) is shown by the STL that
+``scene-synth catalog build`` wrote beside the catalog file (``user_marker``), referred to
+as a ``file://`` URI: RViz reads it on the machine the node runs on or one that shares its
+files.
 """
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 from .. import catalog
-from ..catalog import ModelVariant
+from ..catalog import Catalog, ModelVariant, UserModel
 from ..categories import CATEGORIES
 from ..files import safe_name
 from .export import mtl_text, obj_text
@@ -53,6 +59,22 @@ def shipped_variant(obj) -> ModelVariant | None:
     if obj.category not in CATEGORIES:
         return None
     return catalog.nearest(obj.category, float(obj.width), float(obj.depth))
+
+
+def user_marker(obj, models: Catalog | None) -> UserModel | None:
+    """The user's model whose marker mesh (``UserModel.marker``) shows ``obj``; None when
+    ``models`` has no such model of its category or the STL is missing (a catalog built
+    before the markers were written, or the file removed since), so that the marker falls
+    back to a procedural mesh instead of showing nothing."""
+    m = models.user_model(obj.model_id) if models is not None else None
+    if m is None or m.category != obj.category or not m.marker:
+        return None
+    return m if os.path.isfile(m.marker) else None
+
+
+def file_uri(path: str) -> str:
+    """The ``file://`` URI of an absolute path, as RViz's resource retriever reads it."""
+    return 'file://' + os.path.abspath(path)
 
 
 def mesh_scale(obj, variant: ModelVariant) -> tuple[float, float, float]:

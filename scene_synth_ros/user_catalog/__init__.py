@@ -14,7 +14,8 @@ The modules, in the order a build runs them:
   unreadable, empty, non-finite, flat or implausibly sized models are report lines;
 - ``build``: the whole folder into a ``BuildReport``;
 - ``store``: the catalog file (JSON) written and read back, so that using a catalog does
-  not read the meshes again;
+  not read the meshes again, with each model's mesh for RViz markers beside it (an STL
+  already in the object frame: ``markers/<id>.stl``);
 - ``mesh``: a user model's mesh as the exporters draw it, stretched onto an object's box.
 
 Command line: ``scene-synth catalog build DIR --out CATALOG.json``, then ``--catalog

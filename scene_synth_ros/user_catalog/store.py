@@ -5,16 +5,24 @@ JSON, so that using a catalog never re-reads its meshes::
     {"format": "scene_synth_ros user catalog", "version": 1,
      "models": [{"model_id": "red_chair", "category": "straight chair",
                  "file": "meshes/red_chair.glb", "size": [0.45, 0.52, 0.9],
-                 "up": "+y", "front": "+z", "scale": 1.0, "offset": [0.01, 0.0, 0.0]}],
+                 "up": "+y", "front": "+z", "scale": 1.0, "offset": [0.01, 0.0, 0.0],
+                 "marker": "markers/red_chair.stl"}],
      "report": ["models[3] 'lamp.obj': no such file"]}
 
 ``file`` is relative to the catalog file's folder (the two move together); ``size`` is
 (width, depth, height) in metres; ``offset`` centres the turned and scaled model
 (``measure.placement``). A catalog file that is not what it should be is a
 ``CatalogError`` naming the first problem.
+
+``marker`` (optional, relative like ``file``) is the model's mesh already in the package's
+object frame at ``size``, as a binary STL that ``write_catalog`` writes into ``markers/``
+beside the catalog file: RViz shows a mesh resource as it is, with a pose and a scale but
+no other transform. Catalogs written before it existed lack it and still read (version 1):
+their RViz markers show the nearest procedural model instead.
 """
 from __future__ import annotations
 
+from dataclasses import replace
 import math
 import os
 from pathlib import Path
@@ -25,7 +33,7 @@ import numpy as np
 from .. import catalog
 from ..catalog import Catalog, UserModel
 from ..errors import CatalogError, quoted
-from ..files import read_json, write_atomic
+from ..files import read_json, safe_name, write_atomic
 from ..schema import format_json
 from .axes import parse_axis
 from .measure import placement
@@ -33,6 +41,7 @@ from .spec import MAX_ID, category_of
 
 FORMAT = 'scene_synth_ros user catalog'
 VERSION = 1
+MARKERS = 'markers'            # the folder of the RViz meshes, beside the catalog file
 
 
 def model_record(m: UserModel, folder: Path) -> dict[str, Any]:
@@ -44,7 +53,9 @@ def model_record(m: UserModel, folder: Path) -> dict[str, Any]:
     return {'model_id': m.model_id, 'category': m.category,
             'file': Path(os.path.relpath(m.source, folder.resolve())).as_posix(),
             'size': [round(float(v), 6) for v in m.size], 'up': up, 'front': front,
-            'scale': scale, 'offset': [round(float(v), 6) + 0.0 for v in t[:3, 3]]}
+            'scale': scale, 'offset': [round(float(v), 6) + 0.0 for v in t[:3, 3]],
+            **({'marker': Path(os.path.relpath(m.marker, folder.resolve())).as_posix()}
+               if m.marker else {})}
 
 
 def _axis(v: np.ndarray) -> str:
@@ -53,13 +64,35 @@ def _axis(v: np.ndarray) -> str:
 
 
 def write_catalog(path: str | Path, models: list[UserModel], report: list[str]) -> Path:
+    """Write the catalog file, and each model's RViz mesh (``write_marker``) beside it."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
+    models = [replace(m, marker=write_marker(m, path.parent) or '') for m in models]
     data = {'format': FORMAT, 'version': VERSION,
             'models': [model_record(m, path.parent) for m in models],
             'report': list(report)}
     write_atomic(path, format_json(data) + '\n')
     return path
+
+
+def write_marker(m: UserModel, folder: Path) -> str | None:
+    """Write ``m``'s mesh in the package's object frame at its size (the box the
+    exporters fit it to) as ``folder/markers/<id>.stl``; its absolute path, or None when the
+    mesh cannot be read any more (the markers fall back to a procedural model then)."""
+    import trimesh
+
+    from ..meshes import build_parts
+    try:
+        parts = build_parts(m)
+    except CatalogError:
+        return None
+    mesh = trimesh.util.concatenate([trimesh.Trimesh(p.vertices, p.faces, process=False)
+                                     for p in parts])
+    stl = trimesh.exchange.stl.export_stl(mesh)
+    out = (folder / MARKERS / f'{safe_name(m.model_id)}.stl').resolve()
+    out.parent.mkdir(parents=True, exist_ok=True)
+    write_atomic(out, stl)
+    return str(out)
 
 
 def read_catalog(path: str | Path) -> Catalog:
@@ -118,6 +151,10 @@ def _model(record: dict[str, Any], folder: Path) -> UserModel:
     size = _numbers(record['size'], 3, positive=True)
     offset = _numbers(record['offset'], 3)
     source = (folder / str(record['file'])).resolve()
+    marker = record.get('marker')
+    if marker is not None and not isinstance(marker, str):
+        raise ValueError('marker must be a path')
     m = placement(up, front, scale, offset)
     return UserModel(model_id, category, size, 0, str(source),
-                     tuple(float(v) for v in m.ravel()))
+                     tuple(float(v) for v in m.ravel()),
+                     str((folder / marker).resolve()) if marker else '')
