@@ -175,9 +175,15 @@ class Source:
 
     @classmethod
     def shells(cls, room_types) -> Source:
+        from .categories import defined_room_type
         types = tuple(resolve_room_type(t) for t in room_types)
         if not types:
             raise BatchError('shells need at least one room type')
+        own = [t for t in types if defined_room_type(t)]
+        if own:
+            raise BatchError(f'{own[0]} is a room type of the data set the weights were '
+                             f'trained on, and the corpus makes only the paper\'s rooms: '
+                             f'give --layouts')
         return cls('shells', types)
 
     @classmethod

@@ -149,7 +149,15 @@ def test_the_commands_take_the_data_sets_room_types_from_the_weights(
     r = cli('validate', out, '--weights-dir', kitchen_weights)
     assert 'physically valid' in r.stdout
     r = cli('generate', '--room-type', 'kitchen', '--weights-dir', kitchen_weights, ok=False)
-    assert r.returncode == 2 and 'corpus makes no empty kitchen: give --layout' in r.stderr
+    assert r.returncode == 2 and "corpus makes only the paper's rooms: give --layout" in r.stderr
+    r = cli('generate', '-n', 2, '--room-type', 'kitchen', '--weights-dir', kitchen_weights,
+            '--out', tmp_path / 'batch', ok=False)
+    assert r.returncode == 2 and 'give --layouts' in r.stderr
+    r = cli('evaluate', '--room-type', 'kitchen', '--weights-dir', kitchen_weights,
+            '--out', tmp_path / 'ev', ok=False)
+    assert r.returncode == 2 and 'evaluate them with --data' in r.stderr
+    r = cli('corpus', '--room-type', 'kitchen', '-n', 1, '--out', tmp_path / 'c', ok=False)
+    assert r.returncode == 2 and "unknown room type 'kitchen'" in r.stderr
     r = cli('train', '--data', data, ok=False)
     assert r.returncode == 2 and '--data needs --weights-dir' in r.stderr
     r = cli('train', '--data', tmp_path, '--weights-dir', tmp_path / 'w', ok=False)

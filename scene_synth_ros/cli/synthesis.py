@@ -166,14 +166,14 @@ def cmd_generate(args) -> int:
         room = load_scene_file(args.layout).room
         title = f'{Path(args.layout).stem} (seed {args.seed})'
     else:
-        from ..categories import ROOM_TYPES
+        from ..categories import defined_room_type
         from ..corpus.generate import empty_room
         rt = room_types(args.room_type)
         if len(rt) != 1:
             raise UserError('generate furnishes one room: give one --room-type, not all')
-        if rt[0] not in ROOM_TYPES:
+        if defined_room_type(rt[0]):
             raise UserError(f'{rt[0]} is a room type of the data set the weights were trained '
-                            f'on, and the corpus makes no empty {rt[0]}: give --layout')
+                            f'on, and the corpus makes only the paper\'s rooms: give --layout')
         room = empty_room(rt[0], args.seed)
         title = f'{rt[0]} (seed {args.seed})'
     result = synth.generate(room, args.seed)

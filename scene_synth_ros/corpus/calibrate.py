@@ -12,7 +12,7 @@ import json
 from pathlib import Path
 import tempfile
 
-from ..categories import ROOM_TYPES, room_spec
+from ..categories import ROOM_TYPES, paper_spec
 from ..files import write_atomic
 from .generate import CALIBRATION_FILE, generate_corpus, load_calibration
 from .stats import collect
@@ -25,7 +25,7 @@ def calibrate(rooms: int = 2000, iterations: int = 3, seed: int = 12345,
               workers: int | None = None, log=print) -> dict[str, dict[str, float]]:
     """Fit the factors and write them to ``out``. Uses a seed of its own so that the rooms
     it fits on are not the rooms of the default corpus (seed 0)."""
-    factors = {rt: {c.name: 1.0 for c in room_spec(rt).categories} for rt in room_types}
+    factors = {rt: {c.name: 1.0 for c in paper_spec(rt).categories} for rt in room_types}
     with tempfile.TemporaryDirectory() as scratch:
         # The factors of the pass under way, where the corpus workers read them.
         current = Path(scratch) / 'calibration.json'
@@ -42,7 +42,7 @@ def calibrate(rooms: int = 2000, iterations: int = 3, seed: int = 12345,
                                             MAX_FACTOR)
                 log(f'calibration pass {it + 1}/{iterations} {rt}: KL(corpus||table) = '
                     f'{stats.kl_to_table:.4f}, objects/room {stats.objects_per_room:.2f} '
-                    f'(table {room_spec(rt).mean_objects_per_room:.2f})')
+                    f'(table {paper_spec(rt).mean_objects_per_room:.2f})')
     _write(Path(out), factors, rooms, iterations, seed)
     load_calibration.cache_clear()
     return factors

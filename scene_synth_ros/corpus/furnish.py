@@ -22,7 +22,7 @@ import numpy as np
 
 from .. import catalog
 from ..catalog import ModelVariant
-from ..categories import CATEGORIES, room_spec
+from ..categories import CATEGORIES, paper_spec
 from ..evaluation.design_rules import access, groups
 from ..scene import PlacedObject
 from .layout import Layout
@@ -80,7 +80,7 @@ def draw_count(rate: float, rng: np.random.Generator, paired: bool = False) -> i
 def draw_plan(room_type: str, rng: np.random.Generator,
               calibration: dict[str, float]) -> list[str]:
     """The categories a room gets, with repetitions, first tier then second tier."""
-    spec = room_spec(room_type)
+    spec = paper_spec(room_type)
     rate = {c.name: c.frequency * calibration.get(c.name, 1.0) for c in spec.categories}
     plan: list[str] = []
     if room_type == 'bedroom':
@@ -379,7 +379,7 @@ def place_first_tier(lay: Layout, category: str, variant: ModelVariant) -> Place
 
 def place_second_tier(lay: Layout, category: str, variant: ModelVariant) -> PlacedObject | None:
     """Put a second-tier object on a parent that can support it, preferred ones first."""
-    spec = room_spec(lay.room.room_type)
+    spec = paper_spec(lay.room.room_type)
     plausible = groups.PLAUSIBLE_PARENTS.get(category)
     parents = [p for p in lay.first_tier(*spec.supports(category))
                if plausible is None or p.category in plausible]

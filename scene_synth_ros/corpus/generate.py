@@ -11,6 +11,7 @@ from typing import Iterator
 import numpy as np
 
 from ..categories import CATEGORIES, ROOM_TYPES, resolve_room_type
+from ..errors import UnknownRoomType
 from ..evaluation import design_rules
 from ..geometry import check_scene
 from ..parallel import process_pool
@@ -53,12 +54,23 @@ def room_rng(room_type: str, seed: int, index: int) -> np.random.SeedSequence:
     return np.random.SeedSequence([seed, ROOM_TYPES.index(room_type), index])
 
 
+def corpus_room_type(name: str) -> str:
+    """The paper's room type ``name`` names; ``UnknownRoomType`` for a data set's own: the
+    corpus furnishes the paper's four (with the paper's categories, whatever a data set
+    calls its room types in this process)."""
+    room_type = resolve_room_type(name)
+    if room_type not in ROOM_TYPES:
+        raise UnknownRoomType(f'the procedural corpus has no {room_type} rooms; it makes '
+                              f'{", ".join(ROOM_TYPES)}')
+    return room_type
+
+
 def generate_room(room_type: str, seed: int = 0, index: int = 0,
                   calibration: dict[str, float] | None = None) -> Scene:
     """A furnished room that passes every check of ``geometry.check_scene`` and keeps every
     rule of ``KEPT_RULES`` (unless none of ``MAX_ATTEMPTS`` attempts does: then the first
     valid one)."""
-    room_type = resolve_room_type(room_type)
+    room_type = corpus_room_type(room_type)
     if calibration is None:
         calibration = load_calibration().get(room_type, {})
     seeds = room_rng(room_type, seed, index).spawn(MAX_ATTEMPTS)
@@ -106,7 +118,7 @@ def generate_corpus(room_type: str, n: int, seed: int = 0, workers: int | None =
                     start: int = 0, calibration_path: str | None = None) -> Iterator[Scene]:
     """Rooms ``start`` .. ``start + n - 1`` of a corpus, in order, made on ``workers``
     processes (default: all cores)."""
-    room_type = resolve_room_type(room_type)
+    room_type = corpus_room_type(room_type)
     reqs = [RoomRequest(room_type, seed, i, calibration_path) for i in range(start, start + n)]
     workers = workers or os.cpu_count() or 1
     if workers <= 1 or n < 8:

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from ..categories import ROOM_SIZE_CAP, room_spec
+from ..categories import ROOM_SIZE_CAP, paper_spec
 from ..scene import Opening, Room
 
 
@@ -119,7 +119,7 @@ def sample_shell(room_type: str, rng: np.random.Generator, min_area: float = 0.0
     """An empty room of ``room_type`` with at least ``min_area`` square metres of floor
     (as far as the room-size cap allows)."""
     cfg = SHELLS[room_type]
-    spec = room_spec(room_type)
+    spec = paper_spec(room_type)
     cap = ROOM_SIZE_CAP[room_type]
     area = min(max(rng.uniform(*cfg.area), min_area), 0.8 * cap * cap)
     floor = floor_outline(room_type, area, rng, cfg)

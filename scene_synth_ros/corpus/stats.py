@@ -6,7 +6,7 @@ from collections import Counter
 from dataclasses import dataclass, field
 from typing import Iterable
 
-from ..categories import kl_divergence, room_spec
+from ..categories import kl_divergence, paper_spec
 from ..geometry import check_scene
 from ..scene import Scene
 
@@ -37,12 +37,12 @@ class CorpusStats:
     @property
     def kl_to_table(self) -> float:
         """KL(corpus || table), the direction of the paper's table 1."""
-        return kl_divergence(self.distribution(), room_spec(self.room_type).distribution())
+        return kl_divergence(self.distribution(), paper_spec(self.room_type).distribution())
 
     @property
     def kl_from_table(self) -> float:
         """KL(table || corpus): large when the corpus misses a category of the table."""
-        return kl_divergence(room_spec(self.room_type).distribution(), self.distribution())
+        return kl_divergence(paper_spec(self.room_type).distribution(), self.distribution())
 
     @property
     def objects_per_room(self) -> float:
@@ -52,7 +52,7 @@ class CorpusStats:
         return self.counts.get(category, 0) / max(self.rooms, 1)
 
     def summary_row(self) -> dict[str, float]:
-        spec = room_spec(self.room_type)
+        spec = paper_spec(self.room_type)
         return {
             'room_type': self.room_type, 'rooms': self.rooms,
             'kl_corpus_table': self.kl_to_table, 'kl_table_corpus': self.kl_from_table,
@@ -69,7 +69,7 @@ class CorpusStats:
     def category_table(self) -> list[tuple[str, float, float]]:
         """(category, per room here, per room in the table), in the table's order."""
         return [(c.name, self.frequency(c.name), c.frequency)
-                for c in room_spec(self.room_type).categories]
+                for c in paper_spec(self.room_type).categories]
 
 
 def collect(room_type: str, scenes: Iterable[Scene], check: bool = True) -> CorpusStats:
