@@ -193,3 +193,16 @@ def test_the_server_serves_a_data_sets_room_type(data, kitchen_weights):
             srv.reconfigure({'next_category': 'spaceship'})
     finally:
         srv.close()
+
+
+def test_the_gallery_shows_held_out_rooms_beside_synthesized_ones(data, kitchen_weights,
+                                                                   tmp_path, cli):
+    out = tmp_path / 'gallery.png'
+    cli('gallery', '--source', 'data', '--data', data, '--weights-dir', kitchen_weights,
+        '--per-type', 2, '--out', out)
+    from matplotlib.image import imread
+    h, w = imread(out).shape[:2]
+    assert w > 1.5 * h                       # one row of 2 real + 2 synthesized rooms
+    r = cli('gallery', '--source', 'data', '--weights-dir', kitchen_weights, '--out', out,
+            ok=False)
+    assert r.returncode == 2 and 'needs --data and --weights-dir' in r.stderr
