@@ -24,7 +24,14 @@ import zlib
 
 import numpy as np
 
-from .categories import CATEGORIES, CategoryInfo, defined_room_type, room_spec
+from .categories import (
+    CATEGORIES,
+    CategoryInfo,
+    RoomTypeSpec,
+    defined_room_type,
+    room_spec,
+    room_types,
+)
 from .scene import Sized
 
 VARIANTS_PER_CATEGORY = 8
@@ -85,14 +92,18 @@ def get(model_id: str) -> ModelVariant:
         return _by_id()[model_id]
     except KeyError:
         pass
-    rt, mark, _ = model_id.partition(DATA_SET_MARK)
-    if mark and defined_room_type(rt.replace('_', ' ')):
-        spec = room_spec(rt.replace('_', ' '))
-        for name in spec.names:
-            for v in variants(name, spec.room_type):
-                if v.model_id == model_id:
-                    return v
+    for rt in room_types():
+        if defined_room_type(rt) and model_id.startswith(f'{slug(rt)}{DATA_SET_MARK}'):
+            v = _data_set_ids(room_spec(rt)).get(model_id)
+            if v is not None:
+                return v
     raise KeyError(f'unknown model id {model_id[:80]!r}')
+
+
+@lru_cache(maxsize=16)
+def _data_set_ids(spec: RoomTypeSpec) -> dict[str, ModelVariant]:
+    """The variants of a data set's room type by id."""
+    return {v.model_id: v for name in spec.names for v in variants(name, spec.room_type)}
 
 
 def all_variants() -> list[ModelVariant]:

@@ -108,11 +108,20 @@ def _bundle_spec(path: str, mtime: int, size: int) -> tuple[str, RoomTypeSpec | 
     try:
         # mmap: the tensors stay on disk, only the small entries are read
         data = torch.load(path, map_location='cpu', weights_only=True, mmap=True)
-        room_type = str(data['room_type'])
-        spec = data.get('room_type_spec')
-        return room_type, RoomTypeSpec.from_dict(json.loads(spec)) if spec else None
+        return str(data['room_type']), _stored_spec(data)
     except Exception as e:  # any unreadable file: the caller skips it
         raise BundleError(f'{path}: {type(e).__name__}') from None
+
+
+def _stored_spec(data: dict) -> RoomTypeSpec | None:
+    """The data set's category set a bundle's dict carries (None: the paper's);
+    ValueError when it is of another room type than the bundle."""
+    if 'room_type_spec' not in data:
+        return None
+    spec = RoomTypeSpec.from_dict(json.loads(data['room_type_spec']))
+    if spec.room_type != data['room_type']:
+        raise ValueError(f'its category set is of room type {spec.room_type!r}')
+    return spec
 
 
 def define_weights_room_types(weights_dir: str | Path) -> list[str]:
@@ -142,11 +151,8 @@ def load_bundle(path: str | Path, device: str | torch.device = 'cpu') -> Bundle:
         raise BundleError(f'{path}: not a scene_synth_ros weights bundle of format {FORMAT}')
     try:
         cfg = PipelineConfig.from_dict(json.loads(data['config']))
-        spec = None
-        if 'room_type_spec' in data:
-            spec = RoomTypeSpec.from_dict(json.loads(data['room_type_spec']))
-            if spec.room_type != data['room_type']:
-                raise ValueError(f'its category set is of room type {spec.room_type!r}')
+        spec = _stored_spec(data)
+        if spec is not None:
             define_room_types([spec])
         rt = resolve_room_type(data['room_type'])
         nets = build_networks(rt, cfg.model)

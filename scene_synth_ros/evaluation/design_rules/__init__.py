@@ -41,14 +41,13 @@ def category_of(name: str, room_type: str) -> CategoryInfo | None:
     category set first (a data set's categories, sizes and wall flags live there), then the
     paper's table; None when neither knows it. For the paper's room types this is
     ``categories.CATEGORIES[name]``."""
-    for rt in (room_type, None):
+    try:
         try:
-            return category_info(name, rt)
-        except KeyError:
-            return None
+            return category_info(name, room_type)
         except UnknownRoomType:     # a room of a type this process does not define
-            continue
-    return None
+            return category_info(name)
+    except KeyError:
+        return None
 
 
 @dataclass(frozen=True)
