@@ -36,6 +36,7 @@ def _init_worker(weights, location_mode, networks_alone):
     cfg = SynthConfig(location_mode=location_mode)
     if networks_alone:
         cfg.insertion_rules = ()
+        cfg.owed_partners = ()
     _synth = Synthesizer(weights, cfg)
 
 

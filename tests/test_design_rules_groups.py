@@ -286,3 +286,17 @@ def test_a_coffee_table_may_wait_for_its_seats_which_then_go_by_it():
     assert groups.coffee_table_verdicts(Scene(r, [table, seat])) == {table.id: True}
     assert groups.partner_zone(Scene(r, [table, seat]), rule, 'sofa chair') is None
     assert groups.seating_verdicts(Scene(r, [table])) == {}
+
+
+def test_owed_counts_broken_cases_of_the_owed_rules_and_their_partners():
+    rules = tuple(groups.OWED_PARTNERS)
+    scene = living()
+    assert groups.owed(scene, rules) == (0, frozenset())               # sofa_a serves it
+    scene.objects.append(put('coffee table', 4.4, 4.0, 0, name='lonely'))
+    assert groups.owed(scene, rules) == (1, frozenset(groups.LOUNGE_SEATS))
+    beds = bedroom()
+    beds.objects.append(put('single bed', 3.0, 0.5, 180))              # owes nothing
+    assert groups.owed(beds, rules) == (1, frozenset({'stand'}))
+    assert groups.owed(beds, ('coffee_table_has_seating',)) == (0, frozenset())
+    beds.objects += [put('stand', 0.9, 3.8, -90), put('coffee table', 2.0, 1.0, 0)]
+    assert groups.owed(beds, rules) == (1, frozenset(groups.LOUNGE_SEATS))

@@ -419,3 +419,70 @@ def test_a_named_piece_with_no_partner_in_the_room_is_placed():
     chairs = [c for seed in range(3)
               if (c := synth.next_object(with_desk, seed=seed, category='office chair'))]
     assert chairs and all(groups.chair_verdicts(Scene(room, [desk, c]))[c.id] for c in chairs)
+
+
+def test_retried_locations_fall_anywhere_in_their_pixel(tiny_weights, monkeypatch):
+    """``centre_draws``: the first draws of a category go to their blob's centre, the retries
+    after them anywhere in the drawn pixel, so that a refused spot is not tried again."""
+    def tried(centre_draws):
+        synth = Synthesizer(tiny_weights, SynthConfig(centre_draws=centre_draws))
+        points = []
+
+        def refuse(ctx, scene, category, point, *rest):
+            points.append(tuple(np.round(point, 9)))
+            return None
+        monkeypatch.setattr(synth, '_insert_model', refuse)
+        assert synth.next_object(Scene(ROOM, []), seed=4, category='wardrobe') is None
+        return points
+
+    spread, centred = tried(4), tried(12)
+    assert len(spread) == len(centred) == 12
+    assert spread[:4] == centred[:4]                   # the same first batch, at centres
+    assert len(set(spread[4:])) == 8                   # every retry somewhere else
+    assert len(set(centred)) < len(set(spread))
+
+
+def test_a_group_still_owed_a_partner_at_stop_draws_one():
+    """``owed_partners``: when the category module says STOP while a coffee table has no
+    seating or a double bed no nightstand, the next draw is one of their partners; with
+    none owed the room ends at the first STOP (shipped weights)."""
+    room = Room('bedroom', [(0, 0), (5, 0), (5, 4), (0, 4)], 2.6,
+                doors=(Opening('door', (4.5, 0.0), 0.8, 2.0),))
+    table = box('coffee table', 3.0, 2.0, 0.9, 0.5, 0.45, oid='coffee_table_0')
+    partial = Scene(room, [table])
+
+    calls = []
+
+    def spied(cfg):
+        synth = Synthesizer(None, cfg)
+        real = synth._insert_one
+
+        def spy(ctx, scene, allow_stop=True, only=None):
+            owing = groups.owed(scene, groups.OWED_PARTNERS)
+            obj, why = real(ctx, scene, allow_stop, only)
+            calls.append((owing, only, why, obj))
+            return obj, why
+        synth._insert_one = spy
+        return synth
+    owes, owes_nothing = spied(SynthConfig()), spied(SynthConfig(owed_partners=()))
+
+    def run(synth, seed):
+        calls.clear()
+        return synth.complete(partial, seed=seed).scene, list(calls)
+
+    served = 0
+    for seed in range(6):
+        scene, calls = run(owes, seed)
+        for (owing, only, why, _), (_, then, _, _) in zip(calls, calls[1:]):
+            if only is None and why == 'stop':       # a STOP that did not end the room
+                assert owing[0] > 0 and then == owing[1]
+        owed_calls = [(only, obj) for _, only, _, obj in calls if only is not None]
+        assert all(obj is None or obj.category in only for only, obj in owed_calls)
+        served += any(obj is not None and obj.category in groups.LOUNGE_SEATS
+                      for _, obj in owed_calls)
+        if calls[-1][2] == 'stop' and calls[-1][1] is None and calls[-1][0][0] > 0:
+            assert owed_calls                        # a room ends owing only once it tried
+        _, calls = run(owes_nothing, seed)
+        assert all(only is None for _, only, _, _ in calls)
+        assert [why for *_, why, _ in calls].count('stop') <= 1
+    assert served > 0
