@@ -355,6 +355,40 @@ def test_training_resumes_exactly(tmp_path):
         assert all(torch.allclose(a[k].float(), b[k].float(), atol=1e-6) for k in a), module
 
 
+@pytest.mark.slow
+def test_loader_workers_make_the_same_batches_and_weights(tmp_path):
+    """``loader_workers``: batches made ahead by DataLoader processes are those the training
+    process makes itself, in step order, so a resumed run with workers ends with the same
+    weights as a straight run without."""
+    from dataclasses import replace
+
+    from scene_synth_ros.networks.train import ExampleSource as _ES
+    from scene_synth_ros.networks.train import batches, load_corpus, train_module
+    cfg = tiny_config(steps=4)
+    corpus = load_corpus('bathroom', cfg, workers=1)
+    src = _ES('bathroom', corpus.train, 64, 64, target_radius=1)
+    val = _ES('bathroom', corpus.val, 64, 64)
+    here = list(batches(src, 'location', 3, 5, 1, 4))
+    ahead = list(batches(src, 'location', 3, 5, 1, 4, workers=2))
+    assert len(here) == len(ahead) == 3
+    for a, b in zip(here, ahead, strict=True):
+        assert a.keys() == b.keys() and all(torch.equal(a[k], b[k]) for k in a)
+    assert not torch.equal(here[0]['image'], here[1]['image'])
+    weights = {}
+    for label, workers, stops in (('here', 0, [None]), ('ahead', 2, [2, None])):
+        c = replace(cfg, train=replace(cfg.train, loader_workers=workers))
+        run = tmp_path / label
+        run.mkdir()
+        for k, until in enumerate(stops):
+            torch.manual_seed(123 * k)          # a resumed process: other initial weights
+            net = build_networks('bathroom', c.model)['location']
+            train_module('location', net, src, val, c, 'cpu', run, lambda e: None, False,
+                         until)
+        weights[label] = net.state_dict()
+    assert all(torch.allclose(weights['here'][k].float(), weights['ahead'][k].float(),
+                              atol=1e-6) for k in weights['here'])
+
+
 def test_one_module_retrained_keeps_the_others_of_a_bundle(tiny_weights, tmp_path):
     from scene_synth_ros.networks.train import train
     cfg = tiny_config(steps=2)
@@ -369,8 +403,20 @@ def test_one_module_retrained_keeps_the_others_of_a_bundle(tiny_weights, tmp_pat
         assert same == (name != 'category'), name
     other = tiny_config(steps=2)
     other.model.hidden = 16
-    with pytest.raises(ValueError, match='another model configuration'):
+    with pytest.raises(ValueError, match='another model configuration.*hidden differs'):
         train(['bathroom'], other, tmp_path / 'run2', tmp_path / 'out2', progress=False,
+              echo=lambda s: None, modules=('category',), others_from=tiny_weights)
+    # A setting only the retrained module reads may differ (config.OWN_SETTINGS); one that
+    # a kept module reads may not.
+    own = tiny_config(steps=2)
+    own.model.location_offsets = False
+    train(['bathroom'], own, tmp_path / 'run3', tmp_path / 'out3', progress=False,
+          echo=lambda s: None, modules=('location',), others_from=tiny_weights)
+    mixed = load_bundle(tmp_path / 'out3' / 'bathroom.pt')
+    assert mixed.networks['location'].offset is None
+    assert mixed.config.model.location_offsets is False
+    with pytest.raises(ValueError, match='location_offsets differs'):
+        train(['bathroom'], own, tmp_path / 'run4', tmp_path / 'out4', progress=False,
               echo=lambda s: None, modules=('category',), others_from=tiny_weights)
 
 

@@ -14,6 +14,8 @@ def add_parser(sub) -> None:
                    'config/compact.yaml)')
     c.add_argument('--device', choices=('cpu', 'cuda', 'auto'), help='overrides the config')
     c.add_argument('--threads', type=int, help='torch threads (default: the config; 0 = all)')
+    c.add_argument('--loader-workers', type=int, help='processes making the batches ahead of '
+                   'each step (default: the config; 0 = none; the weights do not change)')
     c.add_argument('--run-dir', help='checkpoints and logs (default: runs/<config name>); '
                    'an interrupted run started again with the same directory resumes')
     c.add_argument('--weights-dir', help='where the trained bundles go (default: the '
@@ -65,6 +67,10 @@ def cmd_train(args) -> int:
     cfg = _pipeline_config(args.config, args.device)
     if args.threads is not None:
         cfg.train.threads = args.threads
+    if args.loader_workers is not None:
+        if args.loader_workers < 0:
+            raise UserError(f'--loader-workers {args.loader_workers}: expected 0 or more')
+        cfg.train.loader_workers = args.loader_workers
     try:
         resolve_device(cfg.device)
     except ValueError as e:     # a plain ValueError, which main() does not catch

@@ -55,6 +55,21 @@ class ModelConfig:
     discriminator_widths: tuple[int, ...] = (16, 32, 64, 64)
 
 
+# The model settings that one module's network alone reads: a bundle may take its other
+# modules from bundles made with other values of these (``train --others-from``).
+OWN_SETTINGS: dict[str, tuple[str, ...]] = {
+    'category': ('category_encoder', 'count_features'),
+    'location': ('location_resolution', 'location_encoder', 'location_decoder_widths',
+                 'location_dropout', 'location_skips', 'location_offsets'),
+    'dimensions': ('discriminator_widths',),
+}
+
+
+def settings_differing(a: ModelConfig, b: ModelConfig) -> set[str]:
+    """The names of the model settings whose values differ between ``a`` and ``b``."""
+    return {f.name for f in fields(ModelConfig) if getattr(a, f.name) != getattr(b, f.name)}
+
+
 @dataclass
 class ModuleSchedule:
     steps: int
@@ -76,6 +91,10 @@ class TrainConfig:
     val_every: int = 250
     checkpoint_every: int = 100
     threads: int = 0                       # torch threads; 0 = all cores
+    # Processes that make the batches ahead of the training step (torch's DataLoader); 0:
+    # the training process makes each batch itself. Batches are pure functions of their
+    # seed, so the weights do not depend on it; on a GPU, rendering is the bottleneck.
+    loader_workers: int = 0
     category: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(4000))
     location: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1200, 32))
     orientation: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(2400))

@@ -41,7 +41,11 @@ class ConditionalVAE(nn.Module):
     def sample(self, image, category, generator: torch.Generator | None = None):
         """Decoded outputs for z drawn from the prior N(0, I)."""
         cond = self.condition(image, category)
-        z = torch.randn(cond.shape[0], self.latent, generator=generator, device=cond.device)
+        # Drawn where the generator lives (synthesis seeds a CPU one), then moved: the same
+        # seed gives the same noise on every device.
+        gen_device = generator.device if generator is not None else cond.device
+        z = torch.randn(cond.shape[0], self.latent, generator=generator,
+                        device=gen_device).to(cond.device)
         return self.decode(cond, category, z)
 
 

@@ -30,7 +30,14 @@ from ..files import writing_together
 from ..scene import Scene
 from . import COMPONENT_ROWS, NETWORKS
 from .bundle import Bundle, build_networks, bundle_path, load_bundle, save_bundle
-from .config import ModelConfig, ModuleSchedule, PipelineConfig, resolve_device
+from .config import (
+    OWN_SETTINGS,
+    ModelConfig,
+    ModuleSchedule,
+    PipelineConfig,
+    resolve_device,
+    settings_differing,
+)
 from .dimensions import Discriminator, box_sdf, dimensions_elbo
 from .examples import ExampleSource
 from .location import location_loss, offset_loss
@@ -76,6 +83,35 @@ def model_cooccurrence(room_type: str, scenes: list[Scene]) -> tuple[list[str], 
 
 def _step_seed(seed: int, module: str, step: int) -> list[int]:
     return [seed, NETWORKS.index(module), step]
+
+
+class _Batches(torch.utils.data.Dataset):
+    """The batches of one module's schedule, step by step, for a DataLoader: each is the
+    pure function of (seed, module, step) that training would have made itself."""
+
+    def __init__(self, source: ExampleSource, module: str, seed: int, size: int):
+        self.source, self.module, self.seed, self.size = source, module, seed, size
+
+    def __getitem__(self, step: int) -> dict:
+        return self.source.batch(self.module, _step_seed(self.seed, self.module, step),
+                                 self.size)
+
+
+def _worker_threads(_worker: int) -> None:
+    torch.set_num_threads(1)      # rendering is numpy; one core per loader process
+
+
+def batches(source: ExampleSource, module: str, seed: int, size: int, start: int, stop: int,
+            workers: int = 0, pin: bool = False):
+    """The training batches of steps ``start``..``stop - 1`` in order, made by ``workers``
+    processes ahead of the step (none: made here, one at a time)."""
+    data = _Batches(source, module, seed, size)
+    if workers <= 0:
+        return (data[step] for step in range(start, stop))
+    return iter(torch.utils.data.DataLoader(
+        data, batch_size=None, sampler=range(start, stop), num_workers=workers,
+        pin_memory=pin, prefetch_factor=4, worker_init_fn=_worker_threads,
+        persistent_workers=False))
 
 
 def _lr(sched: ModuleSchedule, step: int) -> float:
@@ -190,10 +226,11 @@ def train_module(module: str, net: nn.Module, source: ExampleSource, val: Exampl
     running: dict[str, float] = {}
     last_val: dict[str, float] | None = None
     t0 = time.perf_counter()
-    for step in bar:
+    made = batches(source, module, t.seed, sched.batch_size, start, sched.steps,
+                   t.loader_workers, pin=torch.device(device).type == 'cuda')
+    for step, batch in zip(bar, made, strict=True):
         for g in opt.param_groups:
             g['lr'] = _lr(sched, step)
-        batch = source.batch(module, _step_seed(t.seed, module, step), sched.batch_size)
         torch.manual_seed(int(np.random.SeedSequence(_step_seed(t.seed, module, step))
                               .generate_state(1)[0]))
         if disc is not None:
@@ -332,9 +369,13 @@ def _take_networks(nets: dict[str, nn.Module], path: Path, model: ModelConfig,
                    names: list[str]) -> None:
     """Replace ``names`` in ``nets`` by the trained networks of the bundle at ``path``."""
     base = load_bundle(path)
-    if base.config.model != model:
+    trained = [n for n in NETWORKS if n not in names]
+    own = {s for n in trained for s in OWN_SETTINGS.get(n, ())}
+    differing = sorted(settings_differing(base.config.model, model) - own)
+    if differing:
         raise ValueError(f'{path}: its networks were made with another model configuration '
-                         f'({base.config.name}); train all modules instead')
+                         f'({base.config.name}: {differing[0]} differs); train all modules '
+                         'instead')
     for name in names:
         nets[name].load_state_dict(base.networks[name].state_dict())
 
