@@ -8,7 +8,7 @@ violation. Then ``--timing-rooms`` bedrooms are synthesized one after another in
 alone, for the wall time per room, the time per module and the peak memory.
 
     .venv/bin/python benchmarks/bench_synth.py [-n 500] [--corpus-rooms 2000]
-        [--timing-rooms 100] [--room-type all] [--workers 2]
+        [--timing-rooms 100] [--room-type all] [--workers 2] [--device cpu|cuda]
 """
 import argparse
 from collections import Counter
@@ -86,9 +86,9 @@ def quality(room_types, n, corpus_rooms, workers, weights):
               f'{s["stop"]:>14d}/{s["max_objects"]}/{s["nothing_fits"]}')
 
 
-def timing(rooms, weights):
-    from scene_synth_ros.synth import Synthesizer
-    synth = Synthesizer(weights)
+def timing(rooms, weights, device='cpu'):
+    from scene_synth_ros.synth import SynthConfig, Synthesizer
+    synth = Synthesizer(weights, SynthConfig(device=device))
     synth.bundle('bedroom')
     synth.generate(empty_room('bedroom', HELDOUT_SEED, 10_000), seed=0)   # warm-up
     seconds, modules, objects = [], Counter(), 0
@@ -107,7 +107,8 @@ def timing(rooms, weights):
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f'\ncomplete bedrooms from empty, {rooms} rooms, {objects / rooms:.1f} objects each, '
           f'{os.cpu_count()} cores ({platform.processor() or platform.machine()}), '
-          f'torch {torch.__version__} with {torch.get_num_threads()} threads:')
+          f'torch {torch.__version__} with {torch.get_num_threads()} threads, '
+          f'networks on {synth.device}:')
     print(f'  median {statistics.median(seconds):.3f} s, mean {statistics.mean(seconds):.3f} s, '
           f'p90 {sorted(seconds)[int(0.9 * len(seconds))]:.3f} s, max {max(seconds):.3f} s '
           f'per room (paper: 1.86 s on a GTX 1080 Ti)')
@@ -126,12 +127,14 @@ def main():
     ap.add_argument('--room-type', default='all')
     ap.add_argument('--workers', type=int, default=os.cpu_count() or 1)
     ap.add_argument('--weights-dir', default=None)
+    ap.add_argument('--device', default='cpu', choices=('cpu', 'cuda'),
+                    help='where the timed rooms run their networks')
     args = ap.parse_args()
     rts = list(ROOM_TYPES) if args.room_type == 'all' else [args.room_type]
     if args.n:
         quality(rts, args.n, args.corpus_rooms, args.workers, args.weights_dir)
     if args.timing_rooms:
-        timing(args.timing_rooms, args.weights_dir)
+        timing(args.timing_rooms, args.weights_dir, args.device)
 
 
 if __name__ == '__main__':

@@ -2,20 +2,26 @@
 # Issue 11, part 3, on a GPU machine: does the location module learn more with a longer
 # schedule and more rooms, with and without the per-pixel offsets? Also runs the CUDA tests.
 #
-#   OUT=runs/gpu bash benchmarks/gpu_location.sh [STEPS]
+#   OUT=runs/gpu [RUNS="bedroom:compact_long office:offsets"] [LOADER_WORKERS=4] \
+#       [TIMING_ROOMS=0] bash benchmarks/gpu_location.sh [STEPS]
 #
 # Trains, side by side, the location module of config/compact_long.yaml (5,000 rooms, STEPS
-# steps, default the config's 12,000; validated every 1,000) for bedroom (offsets off and
-# on) and office (off), each with 4 DataLoader processes making its batches, and exports
-# each as a bundle whose other modules are the shipped ones (--others-from). Writes to $OUT:
-# the bundles, each run's log.jsonl (the learning curve: val_loss per 1,000 steps) and the
-# CUDA tests' output. On a CPU machine it runs as well, only slower. Where the machine's
+# steps, default the config's 10,000; validated every 1,000) for each ROOM_TYPE:VARIANT of
+# RUNS (default: bedroom with offsets off and on, office off; `offsets` is the same
+# configuration with location_offsets on), each with LOADER_WORKERS DataLoader processes
+# making its batches, and exports each as a bundle whose other modules are the shipped ones
+# (--others-from). Writes to $OUT: the bundles, each run's log.jsonl (the learning curve:
+# val_loss per 1,000 steps) and the CUDA tests' output. With TIMING_ROOMS, then times that
+# many complete bedrooms with the networks on the GPU and on the CPU (bench_synth.py). On a CPU machine it runs as well, only slower. Where the machine's
 # Python lacks a dependency, wheels in .whl/ are installed first (see the device tool's
 # notes). Learning curves: .venv/bin/python benchmarks/learning_curves.py $OUT/*.log.jsonl
 set -u
 OUT=${OUT:-runs/gpu}
 STEPS=${1:-}
 TRAIN_LIMIT=${TRAIN_LIMIT:-420}
+RUNS=${RUNS:-bedroom:compact_long bedroom:offsets office:compact_long}
+LOADER_WORKERS=${LOADER_WORKERS:-4}
+TIMING_ROOMS=${TIMING_ROOMS:-0}
 mkdir -p "$OUT"
 export PYTHONUNBUFFERED=1
 if ! python3 -c 'import shapely, trimesh, jsonschema' 2>/dev/null; then
@@ -47,22 +53,27 @@ fi
 tests=$!
 
 pids=""
-for run in bedroom:compact_long bedroom:offsets office:compact_long; do
+for run in $RUNS; do
   rt=${run%%:*}; conf=${run##*:}
   name=${rt}_${conf}
   timeout "$TRAIN_LIMIT" python3 -m scene_synth_ros.cli train --room-type "$rt" \
     --modules location --others-from scene_synth_ros/weights --config "$work/$conf.yaml" \
-    --loader-workers 4 --threads 0 --run-dir "$work/run_$name" \
+    --loader-workers "$LOADER_WORKERS" --threads 0 --run-dir "$work/run_$name" \
     --weights-dir "$work/weights_$name" --quiet > "$work/$name.out" 2>&1 &
   pids="$pids $!"
 done
 for p in $pids; do wait "$p"; done
 wait "$tests"
-for run in bedroom_compact_long bedroom_offsets office_compact_long; do
-  rt=${run%%_*}
+for run in $RUNS; do
+  rt=${run%%:*}; run=${rt}_${run##*:}
   cp "$work/run_$run/$rt/log.jsonl" "$OUT/$run.log.jsonl" 2>/dev/null
   cp "$work/weights_$run/$rt.pt" "$OUT/$run.pt" 2>/dev/null
   echo "== $run"; tail -n 12 "$work/$run.out"
 done
 echo "== CUDA tests"; tail -n 15 "$OUT/cuda_tests.log"
+if [ "$TIMING_ROOMS" -gt 0 ]; then
+  for device in cuda cpu; do
+    python3 benchmarks/bench_synth.py -n 0 --timing-rooms "$TIMING_ROOMS" --device "$device"
+  done
+fi
 ls -la "$OUT"

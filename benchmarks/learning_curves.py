@@ -2,13 +2,14 @@
 
     .venv/bin/python benchmarks/learning_curves.py RUN/log.jsonl ... [--module location]
                                                    [--baseline ROOM_TYPE --config YAML]
+                                                   [--baseline-weights DIR]
 
 Reads the JSON lines that ``scene-synth train`` writes (``<run-dir>/<room type>/log.jsonl``)
 and prints, per log, the validation rows of the module (``val_loss``, and ``val_offset_error``
-where the location module regresses offsets). With ``--baseline``, the shipped weights'
-module of that room type is evaluated on the same held-out examples as the runs of
-``--config`` (its held-out rooms, its training seed), so that a longer run is read against
-the schedule the shipped weights had.
+where the location module regresses offsets). With ``--baseline``, the module of that room
+type in the shipped weights (or in ``--baseline-weights``) is evaluated on the same held-out
+examples as the runs of ``--config`` (its held-out rooms, its training seed), so that a
+longer run is read against the schedule those weights had.
 """
 import argparse
 import json
@@ -28,7 +29,8 @@ def curve(path: Path, module: str) -> list[dict]:
     return rows
 
 
-def baseline(room_type: str, module: str, config: str) -> dict[str, float]:
+def baseline(room_type: str, module: str, config: str, weights: str | None
+             ) -> dict[str, float]:
     import torch
     torch.set_num_threads(1)
     from scene_synth_ros.networks.bundle import load_bundle
@@ -40,7 +42,7 @@ def baseline(room_type: str, module: str, config: str) -> dict[str, float]:
     t, m = cfg.train, cfg.model
     val = ExampleSource(room_type, load_corpus(room_type, cfg).val, m.resolution,
                         m.location_resolution, target_radius=t.location_target_radius)
-    bundle = load_bundle(weights_dir() / f'{room_type}.pt')
+    bundle = load_bundle(Path(weights or weights_dir()) / f'{room_type}.pt')
     return evaluate(module, bundle.networks[module].float(), val, cfg, 'cpu', t.seed,
                     t.val_examples)
 
@@ -50,6 +52,8 @@ def main() -> int:
     ap.add_argument('logs', nargs='+', type=Path)
     ap.add_argument('--module', default='location')
     ap.add_argument('--baseline', help='a room type: evaluate its shipped module too')
+    ap.add_argument('--baseline-weights', help="the baseline's weights directory (default: "
+                    "the package's)")
     ap.add_argument('--config', default=str(ROOT / 'config' / 'compact_long.yaml'),
                     help='the configuration of the runs (held-out rooms and seed)')
     args = ap.parse_args()
@@ -61,8 +65,9 @@ def main() -> int:
         for r in rows:
             print(f'{r["step"]:7d} ' + ' '.join(f'{r.get(k, float("nan")):18.4f}' for k in keys))
     if args.baseline:
-        m = baseline(args.baseline, args.module, args.config)
-        print(f'shipped {args.baseline} {args.module} on the same held-out examples: ' +
+        m = baseline(args.baseline, args.module, args.config, args.baseline_weights)
+        print(f'{args.baseline_weights or "shipped"} {args.baseline} {args.module} on the '
+              'same held-out examples: ' +
               ', '.join(f'val_{k} {v:.4f}' for k, v in m.items()))
     return 0
 
