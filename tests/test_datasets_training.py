@@ -55,6 +55,13 @@ def test_a_spec_round_trips_through_plain_data():
     again = RoomTypeSpec.from_dict(json.loads(json.dumps(spec.to_dict())))
     assert again == spec
     assert again.importance_order() == spec.importance_order()
+    # names and positions are cached on the (frozen) spec; lookups agree with the table
+    assert spec.names == tuple(c.name for c in spec.categories)
+    assert [spec.index(n) for n in spec.names] == list(range(len(spec.names)))
+    assert spec['double bed'].name == 'double bed' and 'toilet' not in spec
+    with pytest.raises(ValueError, match="'toilet' is not a category of bedroom"):
+        spec.index('toilet')
+    assert again == spec and hash(again) == hash(spec)
 
 
 def test_specs_from_the_description_hold_what_the_pipeline_places(data):
