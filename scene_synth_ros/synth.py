@@ -4,10 +4,9 @@ Objects are inserted one at a time, each in the paper's steps. Next Object Categ
 category module draws the next category, or STOP. Object Location: the location module gives
 a distribution over the room for it, masked to the floor (or, for a second-tier category, to
 the surfaces observed to support it; for a piece of a group kept at insertion, to where a
-partner could have it: ``groups.partner_zone``) and tempered, and locations are drawn from it, the
-first ones moved to the centre of the blob they fell in (``SynthConfig.location_mode``,
-``centre_draws``) and, in bundles
-with offsets, by the offset predicted there. Object
+partner could have it: ``groups.partner_zone``) and tempered, and locations are drawn from
+it, the first ones moved to the centre of the blob they fell in (``SynthConfig.location_mode``,
+``centre_draws``) and, in bundles with offsets, by the offset predicted there. Object
 Orientation: at each location the orientation module draws a facing, snapped to the room's
 axes when its classifier says so. Object Dimensions: the dimensions module draws a
 footprint. Object Insertion: the catalog model nearest that footprint is placed, preferring
@@ -198,7 +197,8 @@ class SynthConfig:
     # those failed) fall anywhere in their pixel. Decoded to a blob's centre, every draw of
     # one blob is the same point, so a seat that blocks its desk's front there was refused
     # twelve times over, where a draw a pixel aside keeps the desk reachable
-    # (``benchmarks/design_rules.py``: bedroom desks with a seat 43.4 -> 51.9 %, corpus 55 %).
+    # (``benchmarks/design_rules.py``, with the location modules before the shipped ones:
+    # bedroom desks with a seat 43.4 -> 51.9 %, corpus 55 %).
     centre_draws: int = 4
     models_per_location: int = 3        # catalog models tried at one location
     category_attempts: int = 4          # category draws per insertion before giving up
@@ -287,6 +287,10 @@ class Synthesizer:
         if unknown:
             raise SynthesisError(f'insertion cannot keep the design rule {quoted(min(unknown))}; '
                                  f'it keeps {", ".join(INSERTION_RULES)}')
+        unknown = set(self.config.owed_partners) - set(groups.OWED_PARTNERS)
+        if unknown:
+            raise SynthesisError(f'no partner can be owed for the rule {quoted(min(unknown))}; '
+                                 f'the rules that owe one are {", ".join(groups.OWED_PARTNERS)}')
         try:
             self.device = resolve_device(self.config.device)
         except ValueError as e:

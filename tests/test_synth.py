@@ -257,6 +257,8 @@ def test_errors_say_what_is_wrong(tmp_path, tiny_weights):
     with pytest.raises(SynthesisError, match="'bed' is a double bed, which is not one of the "
                                              'bathroom categories'):
         Synthesizer(tiny_weights).complete(odd)
+    with pytest.raises(SynthesisError, match="no partner can be owed for the rule 'wall_cont"):
+        Synthesizer(tiny_weights, SynthConfig(owed_partners=('wall_contact',)))
 
 
 # ---- the shipped weights -------------------------------------------------------------------
