@@ -1,0 +1,86 @@
+"""What batching buys each module: milliseconds per forward pass and per sample, by batch size.
+
+    .venv/bin/python benchmarks/batch_gain.py [--room-type bedroom] [--sizes 1,4,8,16,32]
+                                              [--threads 1] [--device cpu]
+
+Synthesis calls the category and location modules on one image per step and the orientation,
+snap and dimensions modules on the few candidate placements of one location draw; rooms in
+lockstep (issue 16) would stack those calls across rooms. This times the shipped networks
+(float32, inference mode) on random images of the room type's channels at each batch size:
+the median of 20 passes after 3 warm-ups. One torch thread by default, as a batch worker runs.
+"""
+import argparse
+from functools import partial
+from pathlib import Path
+import statistics
+import sys
+import time
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+
+# The call synthesis makes of each module.
+FORWARD = {'category': lambda net, x, counts: net(x, counts),
+           'location': lambda net, x: net.predict(x),
+           'orientation': lambda net, x, cat: net.sample(x, cat),
+           'snap': lambda net, x, cat: net(x, cat),
+           'dimensions': lambda net, x, cat: net.sample(x, cat)}
+
+
+def median_ms(fn, repeats: int = 20) -> float:
+    import torch
+    with torch.inference_mode():
+        for _ in range(3):
+            fn()
+        times = []
+        for _ in range(repeats):
+            t0 = time.perf_counter()
+            fn()
+            times.append(time.perf_counter() - t0)
+    return statistics.median(times) * 1000
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument('--room-type', default='bedroom')
+    ap.add_argument('--sizes', default='1,4,8,16,32')
+    ap.add_argument('--threads', type=int, default=1)
+    ap.add_argument('--device', default='cpu', choices=('cpu', 'cuda'))
+    args = ap.parse_args()
+    import torch
+    torch.set_num_threads(args.threads)
+    from scene_synth_ros.categories import room_spec
+    from scene_synth_ros.networks.bundle import load_bundle
+    from scene_synth_ros.paths import weights_dir
+    from scene_synth_ros.render import num_channels
+    bundle = load_bundle(weights_dir() / f'{args.room_type}.pt', args.device)
+    nets = {name: net.float().eval() for name, net in bundle.networks.items()}
+    channels = num_channels(args.room_type)
+    categories = len(room_spec(args.room_type).names)
+    sizes = [int(s) for s in args.sizes.split(',')]
+    print(f'{args.room_type}, {args.device}, {torch.get_num_threads()} torch thread(s), '
+          f'{channels} channels, {bundle.config.model.resolution} px')
+    print(f'{"batch":>5s} ' + ' '.join(f'{m:>19s}' for m in nets))
+    base = {}
+    for b in sizes:
+        x = torch.randn(b, channels, bundle.config.model.resolution,
+                        bundle.config.model.resolution, device=args.device)
+        cat = torch.zeros(b, dtype=torch.long, device=args.device)
+        counts = torch.zeros(b, categories, device=args.device)
+        inputs = {'category': (x, counts), 'location': (x,), 'orientation': (x, cat),
+                  'snap': (x, cat), 'dimensions': (x, cat)}
+        cells = []
+        for name, args_ in inputs.items():
+            ms = median_ms(partial(FORWARD[name], nets[name], *args_))
+            per = ms / b
+            base.setdefault(name, per)
+            cells.append(f'{ms:7.2f} {per:5.2f} x{base[name] / per:3.1f}')
+        print(f'{b:5d} ' + ' '.join(f'{c:>19s}' for c in cells))
+    print('each cell: milliseconds per pass, milliseconds per sample, and how many times '
+          'cheaper a sample is than at the first batch size')
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
