@@ -8,6 +8,9 @@ snap and dimensions modules on the few candidate placements of one location draw
 lockstep (issue 16) would stack those calls across rooms. This times the shipped networks
 (float32, inference mode) on random images of the room type's channels at each batch size:
 the median of 20 passes after 3 warm-ups. One torch thread by default, as a batch worker runs.
+Last, how far a sample's outputs in the largest batch are from its outputs alone: zero would
+let lockstep promise the very rooms of one-at-a-time synthesis; anything else, rooms equal in
+distribution.
 """
 import argparse
 from functools import partial
@@ -79,6 +82,24 @@ def main() -> int:
         print(f'{b:5d} ' + ' '.join(f'{c:>19s}' for c in cells))
     print('each cell: milliseconds per pass, milliseconds per sample, and how many times '
           'cheaper a sample is than at the first batch size')
+    # Whether a sample's outputs in a batch are those it gets alone: what rooms in lockstep
+    # can promise (identical rooms, or rooms equal in distribution).
+    b = max(sizes)
+    x = torch.rand(b, channels, bundle.config.model.resolution,
+                   bundle.config.model.resolution, device=args.device).round()
+    cat = torch.arange(b, device=args.device) % categories
+    counts = torch.rand(b, categories, device=args.device).round()
+    deterministic = {'category': lambda i: nets['category'](x[i], counts[i]),
+                     'location': lambda i: nets['location'].predict(x[i])[0],
+                     'orientation': lambda i: nets['orientation'].condition(x[i], cat[i]),
+                     'snap': lambda i: nets['snap'](x[i], cat[i]),
+                     'dimensions': lambda i: nets['dimensions'].condition(x[i], cat[i])}
+    with torch.inference_mode():
+        diffs = {name: float((fn(slice(0, b)) - torch.cat(
+            [fn(slice(k, k + 1)) for k in range(b)])).abs().max())
+            for name, fn in deterministic.items()}
+    print(f'largest difference between a batch of {b} and its samples alone (outputs, or the '
+          'CVAEs\' conditions): ' + ', '.join(f'{k} {v:.2g}' for k, v in diffs.items()))
     return 0
 
 
