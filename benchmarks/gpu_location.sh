@@ -12,9 +12,9 @@
 # making its batches, and exports each as a bundle whose other modules are the shipped ones
 # (--others-from). Writes to $OUT: the bundles, each run's log.jsonl (the learning curve:
 # val_loss per 1,000 steps) and the CUDA tests' output. With TIMING_ROOMS, then times that
-# many complete bedrooms with the networks on the GPU and on the CPU (bench_synth.py). On a CPU machine it runs as well, only slower. Where the machine's
-# Python lacks a dependency, wheels in .whl/ are installed first (see the device tool's
-# notes). Learning curves: .venv/bin/python benchmarks/learning_curves.py $OUT/*.log.jsonl
+# many complete bedrooms with the networks on the GPU and on the CPU (bench_synth.py). On a
+# CPU machine it runs as well, only slower. Where the machine's Python lacks a dependency,
+# wheels in .whl/ are installed first (see the device tool's notes). Learning curves: .venv/bin/python benchmarks/learning_curves.py $OUT/*.log.jsonl
 set -u
 OUT=${OUT:-runs/gpu}
 STEPS=${1:-}

@@ -11,7 +11,7 @@ from scene_synth_ros.categories import ROOM_TYPES
 from scene_synth_ros.corpus.generate import empty_room
 from scene_synth_ros.geometry import check_scene
 from scene_synth_ros.networks import NETWORKS
-from scene_synth_ros.networks.bundle import load_bundle
+from scene_synth_ros.networks.bundle import build_networks, load_bundle
 from scene_synth_ros.networks.examples import ExampleSource
 from scene_synth_ros.networks.train import batch_loss, load_corpus, train_module
 from scene_synth_ros.paths import weights_dir
@@ -72,7 +72,6 @@ def test_training_steps_on_cuda_with_pinned_loader_workers(tmp_path):
     corpus = load_corpus('bathroom', cfg, workers=1)
     src = ExampleSource('bathroom', corpus.train, 64, 64, target_radius=1)
     val = ExampleSource('bathroom', corpus.val, 64, 64, target_radius=1)
-    from scene_synth_ros.networks.bundle import build_networks
     nets = build_networks('bathroom', cfg.model, seed=0)
     for name in ('location', 'dimensions'):
         metrics = train_module(name, nets[name], src, val, cfg, torch.device('cuda'),
