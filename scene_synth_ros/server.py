@@ -78,7 +78,7 @@ class ServerConfig:
     next_category: str = ''             # what ~/next_object inserts; '' = the model decides
     suggestions: int = 5                # proposals in a ~/suggest answer
     robot_radius: float = 0.2           # the robot every room is furnished for (robot.Robot)
-    robot_reach: float = 0.5
+    robot_reach: float = 0.15
     robot_clearance: float = 0.0
 
 

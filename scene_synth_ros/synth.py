@@ -53,6 +53,7 @@ from .geometry import (
     overlaps_any,
     support_fraction,
 )
+from .lockstep import ask
 from .networks.bundle import (
     Bundle,
     BundleError,
@@ -188,7 +189,10 @@ class SynthConfig:
     location_temperature: float = 0.8   # tau of the location distribution (paper: 0.8)
     max_objects: int = 30               # hard cap on objects in a room
     location_samples: int = 12          # locations tried for one category draw...
-    location_batch: int = 4             # ...drawn and decoded this many at a time
+    # ...drawn and decoded this many at a time. One: a placement is decoded only when the
+    # ones before it failed (with 4, half the decoded ones were never tried; batching comes
+    # from rooms in lockstep, ``lockstep``). Measured with ``benchmarks/lockstep.py``.
+    location_batch: int = 1
     # Each drawn location moved to the centre of the blob of the distribution it fell in
     # (``networks.location.blob_centre``): the networks answer a centroid with a blob as wide
     # as their training target, and a draw anywhere in it misses a wall by up to a pixel.
@@ -454,7 +458,7 @@ class Synthesizer:
             image, small = self._top_down(ctx, scene)
             counts = self._bag_of_categories(ctx, scene)
         with ctx.timed('category'):
-            category_logits = ctx.bundle.networks['category'](image, counts)[0]
+            category_logits = ask(ctx.bundle.networks, 'category', image, counts)[0][0]
         allowed = self._allowed_categories(ctx, scene, allow_stop)
         if only is not None:
             keep = torch.zeros_like(allowed)
@@ -469,7 +473,7 @@ class Synthesizer:
                 return None, 'stop'
             if location is None:
                 with ctx.timed('location'):
-                    logits, offsets = ctx.bundle.networks['location'].predict(image)
+                    logits, offsets = ask(ctx.bundle.networks, 'location', image)
                     location = (logits[0], None if offsets is None
                                 else offsets[0].float().cpu().numpy())
             obj = self._insert_category(ctx, scene, c, location, small)
@@ -602,8 +606,10 @@ class Synthesizer:
         with ctx.timed('orientation'):
             cats = torch.full((len(points),), c, dtype=torch.long, device=self.device)
             nets = ctx.bundle.networks
-            theta = decode_angle(nets['orientation'].sample(x, cats, ctx.gen), ctx.gen)
-            snap = torch.sigmoid(nets['snap'](x, cats)) > self.config.snap_threshold
+            z = nets['orientation'].noise(len(points), ctx.gen, self.device)
+            out, snap_logits = ask(nets, 'orientation', x, cats, z)
+            theta = decode_angle(out, ctx.gen)
+            snap = torch.sigmoid(snap_logits) > self.config.snap_threshold
             return [wrap_angle(ctx.frame.yaw + (snap_angle(th) if s else th))
                     for th, s in zip(theta.tolist(), snap.tolist(), strict=True)]
 
@@ -615,7 +621,9 @@ class Synthesizer:
             x = self._local_images(ctx, scene, points, yaws)
         with ctx.timed('dimensions'):
             cats = torch.full((len(points),), c, dtype=torch.long, device=self.device)
-            log_dims = ctx.bundle.networks['dimensions'].sample(x, cats, ctx.gen)
+            nets = ctx.bundle.networks
+            z = nets['dimensions'].noise(len(points), ctx.gen, self.device)
+            log_dims, = ask(nets, 'dimensions', x, cats, z)
             dims = torch.exp(log_dims).cpu().tolist()
         return [(d[0], d[1]) for d in dims]
 

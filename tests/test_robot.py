@@ -87,7 +87,7 @@ def test_the_report_measures_the_free_floor_reached():
     sealed = robot.report(Scene(ROOM, [WARDROBE, bed_at(0.15)]), Robot())
     assert sealed.reachable_floor < empty.reachable_floor
     d = sealed.to_dict()
-    assert d['radius'] == 0.2 and d['reach'] == 0.5 and d['promise_kept'] is False
+    assert d['radius'] == 0.2 and d['reach'] == 0.15 and d['promise_kept'] is False
     assert d['unreachable'] == ['wardrobe']
     no_doors = Room('bedroom', ROOM.floor, 2.6)
     assert robot.report(Scene(no_doors, [WARDROBE]), Robot()).kept
@@ -113,6 +113,12 @@ def synth(tiny_weights):
     # The promise alone: no design rule kept at insertion (a 0.45 m gap before a wardrobe
     # lets the robot in but is short of the 0.5 m ``storage_clearance`` asks).
     return Synthesizer(tiny_weights, SynthConfig(insertion_rules=()))
+
+
+def test_the_default_robot_is_the_design_rules_robot():
+    # Rooms furnished for the default robot then keep the reachability rules by construction.
+    from scene_synth_ros.evaluation.design_rules.access import RULE_ROBOT
+    assert Robot() == RULE_ROBOT == SynthConfig().robot
 
 
 def test_insertion_refuses_what_breaks_the_promise(synth):
@@ -212,7 +218,7 @@ def test_the_reach_command_reports_draws_and_refuses_a_robot_that_cannot_be(cli,
     save_scene(Scene(ROOM, [WARDROBE, bed_at(0.15)]), tmp_path / 'sealed.json')
     save_scene(Scene(ROOM, [WARDROBE, bed_at(0.45)]), tmp_path / 'open.json')
     run = cli('reach', tmp_path / 'open.json', '--png', tmp_path / 'reach.png')
-    assert 'comes in through the door and reaches every object within 0.5 m' in run.stdout
+    assert 'comes in through the door and reaches every object within 0.15 m' in run.stdout
     assert (tmp_path / 'reach.png').read_bytes()[:4] == b'\x89PNG'
     run = cli('reach', tmp_path / 'open.json', tmp_path / 'sealed.json', ok=False)
     assert run.returncode == 1 and 'sealed.json: a robot of radius 0.2 m cannot reach ' \

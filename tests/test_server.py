@@ -181,7 +181,7 @@ def test_rooms_are_furnished_for_the_robot_of_the_parameters(server):
     server.reconfigure({'robot_radius': 0.3, 'robot_clearance': 0.05})
     server.submit_layout(LAYOUT)
     meta = parse_scene(server.rec.wait(1).json).meta['robot']
-    assert (meta['radius'], meta['reach'], meta['clearance']) == (0.3, 0.5, 0.05)
+    assert (meta['radius'], meta['reach'], meta['clearance']) == (0.3, 0.15, 0.05)
     assert meta['promise_kept'] and meta['unreachable'] == []
     assert server.request('next_object')[0]
     assert parse_scene(server.rec.wait(2).json).meta['robot']['promise_kept']

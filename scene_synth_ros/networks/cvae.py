@@ -41,12 +41,15 @@ class ConditionalVAE(nn.Module):
     def sample(self, image, category, generator: torch.Generator | None = None):
         """Decoded outputs for z drawn from the prior N(0, I)."""
         cond = self.condition(image, category)
-        # Drawn where the generator lives (synthesis seeds a CPU one), then moved: the same
-        # seed gives the same noise on every device.
-        gen_device = generator.device if generator is not None else cond.device
-        z = torch.randn(cond.shape[0], self.latent, generator=generator,
-                        device=gen_device).to(cond.device)
-        return self.decode(cond, category, z)
+        return self.decode(cond, category, self.noise(cond.shape[0], generator, cond.device))
+
+    def noise(self, n: int, generator: torch.Generator | None, device: torch.device
+              ) -> torch.Tensor:
+        """``n`` draws of z from the prior, on ``device``. Drawn where the generator lives
+        (synthesis seeds a CPU one), then moved: the same seed gives the same noise on every
+        device."""
+        gen_device = generator.device if generator is not None else device
+        return torch.randn(n, self.latent, generator=generator, device=gen_device).to(device)
 
 
 def kl_to_prior(mu: torch.Tensor, logvar: torch.Tensor) -> torch.Tensor:

@@ -105,9 +105,9 @@ USED_FRONT = OPERATED_FRONT + BEDS + (
     'sofa', 'sofa chair', 'armchair', 'office chair', 'straight chair', 'chair')
 
 # The robot reaches an object when its body gets within 0.15 m of it: close enough to look at
-# or grasp what is there, without asking for a free corridor wider than the robot. (The
-# product's robot promise, ``robot.Robot``, defaults to an arm's reach of 0.5 m; this rule
-# asks more, as a designer would.)
+# or grasp what is there, without asking for a free corridor wider than the robot. It is the
+# robot of the product's robot promise by default (``robot.Robot()``), so synthesis keeps
+# this rule unless a user asks for another robot.
 ROBOT_REACH = 0.15
 RULE_ROBOT = Robot(radius=ROBOT_WIDTH / 2, reach=ROBOT_REACH)
 

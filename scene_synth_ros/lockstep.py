@@ -1,0 +1,131 @@
+"""Rooms in lockstep: several rooms furnished together, each module's forward pass batched
+across them.
+
+Every room runs the ordinary synthesis code (``Synthesizer.generate`` or ``complete``) in a
+greenlet of its own (``Room``). Where that code needs a network it hands a ``Request`` to
+the coordinator and waits (``ask``). The coordinator works in rounds: every live room runs
+until its next request or its end, then the round's requests are served, those of one
+bundle and module concatenated into one forward pass (``serve``), and each room gets its
+slice. A room alone is served the same way, as a batch of one, with no greenlet.
+
+A room draws all its random numbers from its own seed, in the same order as alone: the
+CVAEs' noise is drawn by the room before it asks (``ConditionalVAE.noise``). So a room in
+lockstep differs from the same room made alone only where a forward pass over a batch sums
+in another order than over one example, about 1e-5 on this CPU
+(``benchmarks/batch_gain.py``); that can tip a draw that fell as close to a boundary, and
+the room goes on differently from there. Rooms in lockstep are therefore equal in
+distribution to rooms made alone, and nearly all are the same rooms to the last few digits
+(``tests/test_lockstep.py`` checks both). A group of rooms (the same rooms, the same
+order) always gives the same results.
+
+Greenlets rather than threads: switching costs about a microsecond, there is no race (a
+room runs only when the coordinator switches to it), and torch's per-thread state (the
+coordinator holds inference mode for the whole group) is shared by the rooms.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Sequence, TypeVar
+
+from greenlet import getcurrent, greenlet
+import torch
+
+T = TypeVar('T')
+
+# The network calls of synthesis: what each takes and gives, batch first.
+#   category     (image, counts)    -> (logits,)            next category or STOP
+#   location     (image,)           -> (logits, offsets)    offsets None without them
+#   orientation  (crops, cats, z)   -> (outputs, snap logits)
+#   dimensions   (crops, cats, z)   -> (log footprints,)
+MODULE_CALLS = ('category', 'location', 'orientation', 'dimensions')
+
+
+@dataclass
+class Request:
+    """One network call of one room: ``module`` of ``networks`` (a bundle's) on ``args``,
+    tensors with the batch first."""
+
+    networks: dict
+    module: str
+    args: tuple[torch.Tensor, ...]
+
+    @property
+    def size(self) -> int:
+        return self.args[0].shape[0]
+
+
+def forward(networks: dict, module: str, *args: torch.Tensor
+            ) -> tuple[torch.Tensor | None, ...]:
+    """``module``'s forward pass over a batch (see ``MODULE_CALLS``)."""
+    if module == 'category':
+        return (networks['category'](*args),)
+    if module == 'location':
+        return networks['location'].predict(*args)
+    if module in ('orientation', 'dimensions'):
+        crops, cats, z = args
+        net = networks[module]
+        out = net.decode(net.condition(crops, cats), cats, z)
+        if module == 'dimensions':
+            return (out,)
+        return out, networks['snap'](crops, cats)
+    raise ValueError(f'no network call {module!r}; the calls are {", ".join(MODULE_CALLS)}')
+
+
+def serve(requests: Sequence[Request]) -> list[tuple[torch.Tensor | None, ...]]:
+    """Each request's answer, the requests of one bundle and module answered by one forward
+    pass over all their examples, in the order of the requests."""
+    answers: list = [None] * len(requests)
+    groups: dict[tuple[int, str], list[int]] = {}
+    for k, r in enumerate(requests):
+        groups.setdefault((id(r.networks), r.module), []).append(k)
+    for ks in groups.values():
+        first = requests[ks[0]]
+        if len(ks) == 1:
+            answers[ks[0]] = forward(first.networks, first.module, *first.args)
+            continue
+        args = [torch.cat([requests[k].args[i] for k in ks])
+                for i in range(len(first.args))]
+        outs = forward(first.networks, first.module, *args)
+        sizes = [requests[k].size for k in ks]
+        parts = [o.split(sizes) if o is not None else [None] * len(ks) for o in outs]
+        for j, k in enumerate(ks):
+            answers[k] = tuple(p[j] for p in parts)
+    return answers
+
+
+class Room(greenlet):
+    """The greenlet of one room of a lockstep group."""
+
+
+def ask(networks: dict, module: str, *args: torch.Tensor
+        ) -> tuple[torch.Tensor | None, ...]:
+    """The answer to one network call: from the coordinator, inside a lockstep group; right
+    away, as a batch of one, outside."""
+    me = getcurrent()
+    if isinstance(me, Room):
+        return me.parent.switch(Request(networks, module, args))
+    return forward(networks, module, *args)
+
+
+def run(calls: Sequence[Callable[[], T]]) -> list[T | Exception]:
+    """Each call's result, or the exception it raised, the calls made in lockstep (see the
+    module docstring). Anything but an ``Exception`` (Ctrl-C) ends the group and is raised."""
+    rooms = [Room(c) for c in calls]
+    results: list = [None] * len(rooms)
+    answers: dict[int, object] = {k: () for k in range(len(rooms))}
+    with torch.inference_mode():
+        while answers:
+            requests: dict[int, Request] = {}
+            for k, answer in answers.items():
+                try:
+                    out = rooms[k].switch(*answer)
+                except Exception as e:        # noqa: BLE001 - one room's end, not the group's
+                    results[k] = e
+                    continue
+                if rooms[k].dead:
+                    results[k] = out
+                else:
+                    requests[k] = out
+            served = serve(list(requests.values()))
+            answers = {k: (a,) for k, a in zip(requests, served, strict=True)}
+    return results
