@@ -1,17 +1,22 @@
 """Batches of rooms (``scene_synth_ros.batch``): rooms per second with 1 and 2 worker
-processes, peak memory per worker, and a memory soak.
+processes and R = 1, 8, 32 rooms in lockstep, peak memory per worker, and a memory soak.
 
-For each ``--workers`` count, ``-n`` complete rooms of ``--room-type`` (default bedrooms,
-from corpus-like empty shells) are furnished into a fresh directory exactly as
-``scene-synth generate -n N --out DIR --workers W`` does, start-up included. With ``--soak
+For each ``--workers`` count and each ``--lockstep`` R, ``-n`` complete rooms of
+``--room-type`` (default bedrooms, from corpus-like empty shells) are furnished into a fresh
+directory exactly as ``scene-synth generate -n N --out DIR --workers W --lockstep R`` does,
+start-up included; the runs are interleaved (every R for one worker count, then the next
+count). ``--location-batch`` sets ``SynthConfig.location_batch`` (candidate placements decoded
+together; default that of SynthConfig). A room's seconds in lockstep are its group's shared
+equally. With ``--soak
 N``, a batch of N rooms on ``--soak-workers`` workers, and each worker's resident memory after
 its 100th room and after its last (the issue's target: no growth beyond 50 MB after the first
 100 rooms); ``--soak-report DIR`` says the same of a soak directory kept with ``--keep``, also
 of one stopped before its end. The machine's load average is printed beside the figures: on a
 shared machine they are only as good as the cores were free.
 
-    .venv/bin/python benchmarks/bench_batch.py [-n 200] [--workers 1 2] [--room-type bedroom]
-        [--soak 10000] [--soak-workers 2] [--weights-dir DIR] [--keep DIR]
+    .venv/bin/python benchmarks/bench_batch.py [-n 200] [--workers 1 2] [--lockstep 1 8 32]
+        [--room-type bedroom] [--location-batch N] [--soak 10000] [--soak-workers 2]
+        [--weights-dir DIR] [--keep DIR]
     .venv/bin/python benchmarks/bench_batch.py --soak-report DIR/soak
 """
 import argparse
@@ -27,6 +32,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from scene_synth_ros.batch import BatchConfig, Manifest, Source, run_batch  # noqa: E402
+from scene_synth_ros.synth import SynthConfig  # noqa: E402
 
 WARM = 100          # rooms after which a worker's memory should stay flat
 
@@ -41,19 +47,27 @@ def _rows(out: Path) -> list[dict]:
 
 
 def _batch(out: Path, room_type: str, n: int, workers: int, weights: str | None,
-           progress: bool = False):
+           progress: bool = False, lockstep: int | None = None,
+           location_batch: int | None = None):
+    synthesis = SynthConfig()
+    if location_batch is not None:
+        synthesis.location_batch = location_batch
     cfg = BatchConfig(out=out, source=Source.shells([room_type]), n=n, workers=workers,
-                      weights_dir=weights, progress=progress)
+                      weights_dir=weights, progress=progress, synthesis=synthesis,
+                      **({} if lockstep is None else {'lockstep': lockstep}))
     return run_batch(cfg, echo=lambda s: None)
 
 
-def throughput(room_type: str, n: int, workers: int, weights: str | None, root: Path) -> None:
+def throughput(room_type: str, n: int, workers: int, lockstep: int, weights: str | None,
+               root: Path, location_batch: int | None) -> None:
     print(f'  before: {_load()}', flush=True)
-    s = _batch(root / f'speed_{workers}', room_type, n, workers, weights)
-    rows = _rows(root / f'speed_{workers}')
+    out = root / f'speed_{workers}_{lockstep}'
+    s = _batch(out, room_type, n, workers, weights, lockstep=lockstep,
+               location_batch=location_batch)
+    rows = _rows(out)
     ok = [r for r in rows if r['status'] == 'ok']
     secs = sorted(r['seconds'] for r in ok)
-    print(f'{workers} worker(s): {n} {room_type}s in {s.seconds:.1f} s = '
+    print(f'{workers} worker(s), lockstep {lockstep}: {n} {room_type}s in {s.seconds:.1f} s = '
           f'{s.rooms_per_second:.2f} rooms/s (start-up included); {len(ok)} ok, '
           f'{s.objects_per_room:.2f} objects a room, {s.valid} valid, '
           f'{s.robot_kept} robot promise kept; per room in a worker: median '
@@ -102,6 +116,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument('-n', type=int, default=200, help='rooms per throughput run (0: none)')
     ap.add_argument('--workers', type=int, nargs='+', default=[1, 2])
+    ap.add_argument('--lockstep', type=int, nargs='+', default=[1, 8, 32])
+    ap.add_argument('--location-batch', type=int, default=None)
     ap.add_argument('--room-type', default='bedroom')
     ap.add_argument('--soak', type=int, default=0, help='rooms of the memory soak (0: none)')
     ap.add_argument('--soak-workers', type=int, default=2)
@@ -117,7 +133,9 @@ def main():
         root = Path(args.keep or tmp)
         if args.n:
             for w in args.workers:
-                throughput(args.room_type, args.n, w, args.weights_dir, root)
+                for r in args.lockstep:
+                    throughput(args.room_type, args.n, w, r, args.weights_dir, root,
+                               args.location_batch)
         if args.soak:
             soak(args.room_type, args.soak, args.soak_workers, args.weights_dir, root)
 

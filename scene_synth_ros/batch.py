@@ -15,14 +15,16 @@ in the ``i``-th room of its source (``Source``; the manifest's ``layout`` in bra
 
 So room 0 of ``generate -n N --seed S`` is the room of ``generate --seed S``, and any room is
 made again alone from its scene file and seed (``generate --layout
-DIR/scenes/room_000042.json --seed 42``), to the last digit when torch has one thread there
-too (the one-room command uses every core, which changes the last digits of the networks'
-sums). ``generate`` furnishes from empty (objects in the input are dropped); ``complete``
-keeps them and adds the rest.
+DIR/scenes/room_000042.json --seed 42``): to the last digit with ``--lockstep 1`` when torch
+has one thread there too (the one-room command uses every core, which changes the last digits
+of the networks' sums), and in lockstep nearly always the same room (see Determinism).
+``generate`` furnishes from empty (objects in the input are dropped); ``complete`` keeps them
+and adds the rest.
 
 The directory::
 
-    batch.json        what the rooms are: command, seed, source, synthesis options, weights.
+    batch.json        what the rooms are: command, seed, source, synthesis options, lockstep
+                      R, weights.
                       A later run into the directory must ask for the same rooms; -n, the
                       workers, the thumbnails and the exports may change.
     manifest.jsonl    one JSON row per room, appended as each room finishes (so a killed run
@@ -40,20 +42,30 @@ a room furnished ``room_type``, ``area``, ``objects``, ``added``, ``stopped``, `
 failed ``error``, the package's one-sentence reason. Every row has ``seconds`` and the
 ``worker`` (host:pid) with its resident and peak memory (``rss_mb``, ``peak_mb``).
 
-Determinism: a room depends only on its index, the seed, its source, the synthesis options
-and the weights, never on which worker furnished it or when. Every worker has a Synthesizer
-of its own and one torch thread, and synthesis draws everything from the room's seed. Timings
-live in the manifest, not in the scene files, so the same batch made by 1 or 2 processes or
-by Ray actors gives byte-identical scene files.
+Rooms in lockstep (``lockstep``, ``--lockstep R``): the rooms of index ``kR`` to ``kR + R -
+1`` form group ``k``, furnished together by one worker, each module's forward pass batched
+across them (``lockstep.run``). A room's ``seconds`` in the manifest is then its group's wall
+time shared equally among its rooms.
+
+Determinism: a room depends only on its index, the seed, its source, the synthesis options,
+the lockstep R and the weights, never on which worker furnished it or when. Every worker has a
+Synthesizer of its own and one torch thread, synthesis draws everything from the room's seed,
+and a group is always the same rooms: a group is furnished whole even when only some of its
+rooms are to be written (a run that resumes it; the last group, filled up beyond ``-n``, or to
+the end of a finite source). Timings live in the manifest, not in the scene files, so the same
+batch made by 1 or 2 processes or by Ray actors, with any ``-n``, gives byte-identical scene
+files. Rooms in lockstep are equal in distribution to rooms made one at a time, and nearly all
+are the same rooms (``lockstep``); with ``--lockstep 1`` each is the very room of the one-room
+command.
 
 Resumption: a room is skipped when the manifest has an ``ok`` row for it and every file this
 run asks for (scene, thumbnail, exports) exists; a room's row is appended only after its
 files are in place. A room that failed is tried again.
 
 Workers: ``parallel.process_pool`` processes, or Ray actors (``ray``, an optional
-dependency), one room at a time each. Workers send back the bytes of a room's files and the
-driver alone writes them (atomically, ``files.write_atomic``), so the output directory need
-exist only where the command runs, also on a cluster.
+dependency), one group of rooms at a time each. Workers send back the bytes of a room's
+files and the driver alone writes them (atomically, ``files.write_atomic``), so the output
+directory need exist only where the command runs, also on a cluster.
 """
 from __future__ import annotations
 
@@ -70,7 +82,7 @@ import tempfile
 import time
 from typing import Callable, Iterator
 
-from . import catalog
+from . import catalog, lockstep
 from .categories import resolve_room_type
 from .errors import SceneSynthError, quoted, sentence
 from .files import write_atomic
@@ -84,8 +96,11 @@ THUMBNAIL = {'figsize': (3.0, 3.0), 'dpi': 80, 'legend': False}   # 240 x 240 px
 # tqdm's bar with the rate always in rooms per second (its default turns slow rates over).
 PROGRESS = ('{desc}: {percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt} '
             '[{elapsed}<{remaining}, {rate_noinv_fmt}{postfix}]')
-# Rooms queued at each Ray actor, so that it starts the next room while the driver is still
-# writing the last one's files.
+# Rooms in lockstep beyond this gain nothing on a CPU (``benchmarks/lockstep.py``) and only
+# hold more rooms' memory.
+MAX_LOCKSTEP = 64
+# Groups of rooms queued at each worker, so that it starts the next group while the driver
+# is still writing the last one's files.
 IN_FLIGHT = 2
 LOST = ('its worker process died while this room or another one was in flight (killed, or '
         'out of memory?); run the batch again to retry it')
@@ -305,6 +320,15 @@ class Worker:
         self.name = f'{socket.gethostname()}:{os.getpid()}'
         self.shipped: set[str] = set()      # shared model files already sent to the driver
 
+    def furnish_group(self, jobs: list[RoomJob]) -> list[RoomResult]:
+        """Rooms ``jobs``, furnished in lockstep (see the module docstring)."""
+        t0 = time.perf_counter()
+        results = lockstep.run([lambda job=job: self.furnish(job) for job in jobs])
+        share = round((time.perf_counter() - t0) / len(jobs), 4)
+        for r in results:
+            r.row['seconds'] = share
+        return results
+
     def furnish(self, job: RoomJob) -> RoomResult:
         """Room ``job`` and its files, or a row saying in one sentence why it failed."""
         t0 = time.perf_counter()
@@ -390,8 +414,8 @@ def _start_pool_worker(spec: WorkerSpec) -> None:
     _WORKER = Worker(spec)
 
 
-def _pool_furnish(job: RoomJob) -> RoomResult:
-    return _WORKER.furnish(job)
+def _pool_furnish(group: list[RoomJob]) -> list[RoomResult]:
+    return _WORKER.furnish_group(group)
 
 
 class RayWorker:
@@ -400,8 +424,8 @@ class RayWorker:
     def __init__(self, spec: WorkerSpec):
         self.worker = Worker(spec)
 
-    def furnish(self, job: RoomJob) -> RoomResult:
-        return self.worker.furnish(job)
+    def furnish_group(self, group: list[RoomJob]) -> list[RoomResult]:
+        return self.worker.furnish_group(group)
 
 
 def _lost(job: RoomJob) -> RoomResult:
@@ -412,56 +436,58 @@ def _lost(job: RoomJob) -> RoomResult:
                        'peak_mb': None}, {})
 
 
-def _pool_results(spec: WorkerSpec, jobs: list[RoomJob], workers: int
+def _pool_results(spec: WorkerSpec, groups: list[list[RoomJob]], workers: int
                   ) -> Iterator[RoomResult]:
-    """The rooms furnished by ``workers`` processes. A worker that dies (killed, out of
-    memory) costs the rooms in flight, which fail with ``LOST``; the others go on in new
-    processes, unless a pool dies before furnishing anything."""
+    """The rooms of ``groups`` furnished by ``workers`` processes, a group at a time each. A
+    worker that dies (killed, out of memory) costs the rooms in flight, which fail with
+    ``LOST``; the others go on in new processes, unless a pool dies before furnishing
+    anything."""
     from concurrent.futures import FIRST_COMPLETED, wait
     from concurrent.futures.process import BrokenProcessPool
 
     from .parallel import process_executor
-    remaining = deque(jobs)
+    remaining = deque(groups)
     while remaining:
-        inflight: dict = {}             # future -> job, in the order they were submitted
+        inflight: dict = {}             # future -> group, in the order they were submitted
         produced = broken = False
         pool = process_executor(workers, _start_pool_worker, (spec,))
         try:
             while (remaining or inflight) and not broken:
                 while remaining and len(inflight) < IN_FLIGHT * workers:
-                    job = remaining.popleft()
-                    inflight[pool.submit(_pool_furnish, job)] = job
+                    group = remaining.popleft()
+                    inflight[pool.submit(_pool_furnish, group)] = group
                 done, _ = wait(inflight, return_when=FIRST_COMPLETED)
                 # In submission order: a worker's rooms come in the order it made them, so
                 # models it sends once are written before a later room that names them.
                 for future in [f for f in inflight if f in done]:
-                    job = inflight.pop(future)
+                    group = inflight.pop(future)
                     try:
-                        result = future.result()
+                        results = future.result()
                     except BrokenProcessPool:
                         broken = True
-                        yield _lost(job)
+                        yield from map(_lost, group)
                         continue
                     produced = True
-                    yield result
+                    yield from results
         finally:
             # also when the driver stops early (an error, Ctrl-C): queued rooms are dropped
             pool.shutdown(wait=True, cancel_futures=True)
-        for future, job in inflight.items():      # the pool broke while these were out
+        for future, group in inflight.items():    # the pool broke while these were out
             if not future.cancelled() and future.exception() is None:
                 produced = True
-                yield future.result()
+                yield from future.result()
             else:
-                yield _lost(job)
+                yield from map(_lost, group)
         if broken and not produced:
-            for job in remaining:
-                yield _lost(job)
+            for group in remaining:
+                yield from map(_lost, group)
             return
 
 
-def _ray_results(spec: WorkerSpec, jobs: list[RoomJob], workers: int | None, address: str
-                 ) -> Iterator[RoomResult]:
-    """The rooms furnished by Ray actors, each actor's in the order it made them (see
+def _ray_results(spec: WorkerSpec, groups: list[list[RoomJob]], workers: int | None,
+                 address: str) -> Iterator[RoomResult]:
+    """The rooms of ``groups`` furnished by Ray actors, a group at a time each, each actor's
+    in the order it made them (see
     ``_pool_results``). ``address``: 'local' starts a Ray of ``workers`` CPUs on this machine
     for the batch (and stops it after); anything else is given to ``ray.init`` (a cluster's
     address, or 'auto'). A driver already connected to Ray uses that connection."""
@@ -484,17 +510,17 @@ def _ray_results(spec: WorkerSpec, jobs: list[RoomJob], workers: int | None, add
     try:
         n = workers or max(1, int(ray.cluster_resources().get('CPU', 1)))
         actor_class = ray.remote(num_cpus=1)(RayWorker)
-        actors = [actor_class.remote(spec) for _ in range(min(n, len(jobs)))]
-        todo = iter(jobs)
+        actors = [actor_class.remote(spec) for _ in range(min(n, len(groups)))]
+        todo = iter(groups)
         queued: list[deque] = [deque() for _ in actors]
 
         def feed(k: int) -> None:
-            job = next(todo, None)
-            if job is not None:
-                queued[k].append(actors[k].furnish.remote(job))
+            group = next(todo, None)
+            if group is not None:
+                queued[k].append(actors[k].furnish_group.remote(group))
 
-        for k in range(len(actors)):
-            for _ in range(IN_FLIGHT):
+        for _ in range(IN_FLIGHT):          # a group for every actor before a second one
+            for k in range(len(actors)):
                 feed(k)
         while any(queued):
             heads = {q[0]: k for k, q in enumerate(queued) if q}
@@ -503,7 +529,7 @@ def _ray_results(spec: WorkerSpec, jobs: list[RoomJob], workers: int | None, add
             queued[k].popleft()
             feed(k)
             try:
-                yield ray.get(ready[0])
+                yield from ray.get(ready[0])
             except ray.exceptions.RayError as e:
                 raise BatchError(f'a Ray worker failed ({sentence(e, 200)}); run the same '
                                  f'command again to resume') from None
@@ -530,6 +556,7 @@ class BatchConfig:
     png: bool = False
     exports: tuple[str, ...] = ()
     ray: str | None = None          # None: worker processes; 'local' or an address: Ray
+    lockstep: int = 8               # rooms furnished together (``lockstep``; 1: one at a time)
     progress: bool = True           # a progress bar on stderr
 
 
@@ -629,7 +656,8 @@ def _identity(cfg: BatchConfig, weights: Path) -> dict:
     written."""
     return json.loads(json.dumps({
         'command': cfg.mode, 'seed': cfg.seed, 'source': cfg.source.identity(),
-        'synthesis': asdict(cfg.synthesis), 'weights': str(weights)}))
+        'synthesis': asdict(cfg.synthesis), 'lockstep': cfg.lockstep,
+        'weights': str(weights)}))
 
 
 def _difference(old, new, where: str = '') -> str | None:
@@ -685,6 +713,15 @@ def _check_weights(cfg: BatchConfig) -> Path:
     return synth.weights_dir.resolve()
 
 
+def _groups(jobs: list[RoomJob], pending: set[int], r: int) -> list[list[RoomJob]]:
+    """The lockstep groups that hold a pending room: room ``i`` is in group ``i // r``, and a
+    group is furnished whole (see the module docstring)."""
+    groups: dict[int, list[RoomJob]] = {}
+    for j in jobs:
+        groups.setdefault(j.index // r, []).append(j)
+    return [g for _, g in sorted(groups.items()) if any(j.index in pending for j in g)]
+
+
 def _cores() -> int:
     """The cores this process may run on."""
     if hasattr(os, 'sched_getaffinity'):
@@ -716,6 +753,8 @@ def run_batch(cfg: BatchConfig, echo: Callable[[str], None] = print) -> BatchSum
         raise BatchError('how many rooms? give -n N')
     if cfg.workers is not None and cfg.workers < 1:
         raise BatchError(f'--workers must be at least 1, got {cfg.workers}')
+    if not 1 <= cfg.lockstep <= MAX_LOCKSTEP:
+        raise BatchError(f'--lockstep must be between 1 and {MAX_LOCKSTEP}, got {cfg.lockstep}')
     if cfg.mode == 'complete' and cfg.source.kind == 'shells':
         raise BatchError('complete needs partial rooms: a file, a directory or a JSON-lines '
                          'file of them')
@@ -723,7 +762,11 @@ def run_batch(cfg: BatchConfig, echo: Callable[[str], None] = print) -> BatchSum
     exports = parse_formats(','.join(cfg.exports))
     out = Path(cfg.out)
     weights = _check_weights(cfg)
-    jobs = cfg.source.jobs(cfg.seed, cfg.n)
+    # A group is always the same rooms (see the module docstring): the last one is filled up
+    # beyond -n with rooms that are furnished and not written.
+    r = cfg.lockstep
+    everything = cfg.source.jobs(cfg.seed, None if cfg.n is None else -(-cfg.n // r) * r)
+    jobs = everything[:cfg.n]
     if cfg.n is not None and len(jobs) < cfg.n:
         echo(f'{cfg.source.path} holds {len(jobs)} rooms: furnishing those, not {cfg.n}')
     _check_directory(out, _identity(cfg, weights))
@@ -731,6 +774,7 @@ def run_batch(cfg: BatchConfig, echo: Callable[[str], None] = print) -> BatchSum
     pending = [j for j in jobs
                if not _done(manifest.rows.get(j.index), out,
                             output_files(j.name, cfg.png, exports))]
+    groups = _groups(everything, {j.index for j in pending}, r)
     spec = WorkerSpec(cfg.mode, cfg.weights_dir, cfg.synthesis, cfg.png, exports)
     workers = cfg.workers or (None if cfg.ray else _cores())
     skipped = len(jobs) - len(pending)
@@ -741,11 +785,12 @@ def run_batch(cfg: BatchConfig, echo: Callable[[str], None] = print) -> BatchSum
     peaks: dict[str, float] = {}
     try:
         if pending:
-            pending = [cfg.source.load(j) for j in pending]
+            groups = [[cfg.source.load(j) for j in g] for g in groups]
             if cfg.ray:
-                results = _ray_results(spec, pending, workers, cfg.ray)
+                results = _ray_results(spec, groups, workers, cfg.ray)
             else:
-                results = _pool_results(spec, pending, min(workers, len(pending)))
+                results = _pool_results(spec, groups, min(workers, len(groups)))
+            wanted = {j.index for j in pending}
             from tqdm import tqdm
             # closing: an error here stops the workers now, not when the traceback goes.
             with closing(results), tqdm(
@@ -754,6 +799,12 @@ def run_batch(cfg: BatchConfig, echo: Callable[[str], None] = print) -> BatchSum
                     bar_format=PROGRESS) as bar:
                 for result in results:
                     row = result.row
+                    if row['index'] not in wanted:
+                        # Made for its group only: of its files, just the shared models its
+                        # worker sends once, which later rooms name.
+                        _write(out, RoomResult(row, {k: v for k, v in result.files.items()
+                                                     if _shared(k)}))
+                        continue
                     _write(out, result)
                     manifest.append(row)
                     if row['status'] == 'ok':

@@ -191,7 +191,7 @@ class SynthConfig:
     location_samples: int = 12          # locations tried for one category draw...
     # ...drawn and decoded this many at a time. One: a placement is decoded only when the
     # ones before it failed (with 4, half the decoded ones were never tried; batching comes
-    # from rooms in lockstep, ``lockstep``). Measured with ``benchmarks/lockstep.py``.
+    # from rooms in lockstep, ``lockstep``). ``benchmarks/bench_batch.py --location-batch``.
     location_batch: int = 1
     # Each drawn location moved to the centre of the blob of the distribution it fell in
     # (``networks.location.blob_centre``): the networks answer a centroid with a blob as wide

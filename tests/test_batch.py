@@ -38,9 +38,10 @@ def batch(tiny_weights, *args):
 
 def test_same_rooms_on_one_and_two_workers_and_a_killed_run_resumes(cli, tiny_weights,
                                                                     tmp_path):
+    # Groups of 4 rooms in lockstep: rooms 0-3, and 4-5 furnished with 6-7, not written.
     a, b = tmp_path / 'a', tmp_path / 'b'
-    cli(*batch(tiny_weights, '-n', 6, '--workers', 1, '--out', a))
-    proc = cli(*batch(tiny_weights, '-n', 6, '--workers', 2, '--out', b))
+    cli(*batch(tiny_weights, '-n', 6, '--workers', 1, '--lockstep', 4, '--out', a))
+    proc = cli(*batch(tiny_weights, '-n', 6, '--workers', 2, '--lockstep', 4, '--out', b))
     assert '6 furnished and 0 failed' in proc.stdout and 'on 2 worker processes' in proc.stdout
     assert scenes(a) == scenes(b) and len(scenes(a)) == 6
     assert [stable(r) for r in rows(a)] == [stable(r) for r in rows(b)]
@@ -56,7 +57,8 @@ def test_same_rooms_on_one_and_two_workers_and_a_killed_run_resumes(cli, tiny_we
     summary = json.loads((b / 'summary.json').read_text())
     assert summary['rooms_ok'] == 6 and summary['workers'] == 2
 
-    # Room 0 is the room of the one-room command (with one torch thread, as a worker has).
+    # Without lockstep, room 0 is the room of the one-room command (with one torch thread, as
+    # a worker has).
     threads = torch.get_num_threads()
     torch.set_num_threads(1)
     try:
@@ -64,22 +66,33 @@ def test_same_rooms_on_one_and_two_workers_and_a_killed_run_resumes(cli, tiny_we
             '--out', tmp_path / 'one.json')
     finally:
         torch.set_num_threads(threads)
-    assert (tmp_path / 'one.json').read_bytes() == scenes(a)['room_000000.json']
+    cli(*batch(tiny_weights, '-n', 1, '--lockstep', 1, '--out', tmp_path / 'alone'))
+    assert (tmp_path / 'one.json').read_bytes() == scenes(tmp_path / 'alone')['room_000000.json']
 
     # A run killed while writing room 4's row: its scene is there, its row half-written;
     # room 5 was never finished.
     lines = (a / 'manifest.jsonl').read_text().splitlines(keepends=True)
     (a / 'manifest.jsonl').write_text(''.join(lines[:4]) + lines[4][:30])
     (a / 'scenes' / 'room_000005.json').unlink()
-    proc = cli(*batch(tiny_weights, '-n', 8, '--workers', 2, '--out', a))
+    proc = cli(*batch(tiny_weights, '-n', 8, '--workers', 2, '--lockstep', 4, '--out', a))
     assert '4 of 8 rooms already there, 4 to furnish' in proc.stdout
     assert '4 furnished and 0 failed' in proc.stdout
     resumed = rows(a)
     assert [r['index'] for r in resumed] == list(range(8))
     assert [stable(r) for r in resumed[:6]] == [stable(r) for r in made]
     assert {k: v for k, v in scenes(a).items() if k < 'room_000006'} == scenes(b)
-    proc = cli(*batch(tiny_weights, '-n', 8, '--out', a))
+    proc = cli(*batch(tiny_weights, '-n', 8, '--lockstep', 4, '--out', a))
     assert '0 furnished and 0 failed' in proc.stdout and '8 already there' in proc.stdout
+    # One room of a group lost: the group is furnished whole again, that room alone written,
+    # the same as before.
+    before = scenes(a)
+    (a / 'scenes' / 'room_000001.json').unlink()
+    proc = cli(*batch(tiny_weights, '-n', 8, '--lockstep', 4, '--out', a))
+    assert '1 furnished and 0 failed' in proc.stdout and scenes(a) == before
+    assert len(rows(a)) == 8
+    # The lockstep R is part of what the batch is.
+    proc = cli(*batch(tiny_weights, '-n', 8, '--out', a), ok=False)
+    assert proc.returncode != 0 and 'lockstep 4 there, 8 now' in proc.stderr
 
 
 def test_bad_layouts_are_manifest_rows_and_the_batch_goes_on(cli, tiny_weights, tmp_path):
@@ -183,7 +196,9 @@ def test_batch_bad_input_is_one_sentence(cli, tiny_weights, tmp_path):
             (('-n', 2, '--out', d, '--png', 'x.png'), 'names its thumbnails'),
             (('-n', 2, '--out', d, '--export', 'obj'), "'obj' is not one of"),
             (('-n', 2, '--out', d, '--export', ','), 'at least one format'),
+            (('-n', 2, '--out', d, '--lockstep', 0), '--lockstep must be between 1 and 64'),
             (('--workers', 2), 'is for batches'),
+            (('--lockstep', 4), 'is for batches'),
             (('--png',), 'needs a file name'),
             (('-n', 2, '--out', d, '--room-type', 'kitchen'), 'unknown room type')]:
         proc = cli('generate', '--weights-dir', tiny_weights, *args, ok=False)
@@ -234,15 +249,17 @@ def test_ray_gives_the_rooms_of_the_process_pool(cli, tiny_weights, tmp_path):
     assert not ray.is_initialized()
     before = _descendants()
     pool, on_ray = tmp_path / 'pool', tmp_path / 'ray'
-    cli(*batch(tiny_weights, '-n', 5, '--workers', 2, '--out', pool))
+    # Groups of 2 in lockstep, so that 3 rooms are work for 2 workers.
+    cli(*batch(tiny_weights, '-n', 5, '--workers', 2, '--lockstep', 2, '--out', pool))
     # With no address the batch starts a Ray of --workers CPUs for itself, and stops it.
-    proc = cli(*batch(tiny_weights, '-n', 3, '--workers', 2, '--ray', '--out', on_ray))
+    proc = cli(*batch(tiny_weights, '-n', 3, '--workers', 2, '--lockstep', 2, '--ray',
+                      '--out', on_ray))
     assert 'on 2 Ray workers' in proc.stdout and not ray.is_initialized()
     assert not _gone(before), 'Ray left processes behind'
     # A driver already on a Ray uses it (here a local one of 1 CPU: one actor) and resumes.
     ray.init(num_cpus=1, include_dashboard=False, logging_level='WARNING')
     try:
-        proc = cli(*batch(tiny_weights, '-n', 5, '--ray', '--out', on_ray))
+        proc = cli(*batch(tiny_weights, '-n', 5, '--lockstep', 2, '--ray', '--out', on_ray))
         assert '3 already there' in proc.stdout and 'on 1 Ray worker)' in proc.stdout
         assert ray.is_initialized()
     finally:

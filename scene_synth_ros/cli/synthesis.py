@@ -100,6 +100,9 @@ def _batch_options(c, layouts: bool) -> None:
                        'or YAML, in name order) or a JSON-lines file (one layout a line)')
     g.add_argument('--workers', type=int, help='worker processes, one torch thread each '
                    '(default: one per core; with --ray, one per CPU of the cluster)')
+    g.add_argument('--lockstep', type=int, metavar='R', help='rooms furnished together by '
+                   "a worker, each network's pass batched across them (default 8; 1: one at a "
+                   'time); part of what the batch is, like --seed')
     g.add_argument('--ray', nargs='?', const='local', metavar='ADDRESS',
                    help='furnish on Ray actors: with no ADDRESS a Ray started on this machine '
                    "for the batch; else a cluster's address (host:port, or auto)")
@@ -211,7 +214,7 @@ def cmd_complete(args) -> int:
 def _one_room_only(args) -> None:
     """UserError for a batch's options given to the one-room command."""
     for flag, value in (('--workers', args.workers), ('--ray', args.ray),
-                        ('--export', args.export)):
+                        ('--export', args.export), ('--lockstep', args.lockstep)):
         if value is not None:
             raise UserError(f'{flag} is for batches: add -n N and --out DIR')
     if args.png is True:
@@ -242,7 +245,8 @@ def _cmd_batch(args, mode: str) -> int:
     summary = run_batch(BatchConfig(
         out=args.out, source=source, mode=mode, n=args.n, seed=args.seed,
         synthesis=_synth_config(args), weights_dir=args.weights_dir, workers=args.workers,
-        png=args.png is True, exports=exports, ray=args.ray, progress=not args.quiet))
+        png=args.png is True, exports=exports, ray=args.ray, progress=not args.quiet,
+        **({} if args.lockstep is None else {'lockstep': args.lockstep})))
     print(summary.report())
     return 1 if summary.failed else 0
 
