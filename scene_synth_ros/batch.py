@@ -42,21 +42,22 @@ a room furnished ``room_type``, ``area``, ``objects``, ``added``, ``stopped``, `
 failed ``error``, the package's one-sentence reason. Every row has ``seconds`` and the
 ``worker`` (host:pid) with its resident and peak memory (``rss_mb``, ``peak_mb``).
 
-Rooms in lockstep (``lockstep``, ``--lockstep R``): the rooms of index ``kR`` to ``kR + R -
-1`` form group ``k``, furnished together by one worker, each module's forward pass batched
-across them (``lockstep.run``). A room's ``seconds`` in the manifest is then its group's wall
-time shared equally among its rooms.
+Rooms in lockstep (``lockstep``, ``--lockstep R``): the rooms of index ``kG`` to ``kG + G -
+1`` form group ``k`` (``G = GROUP_ROUNDS * R``; ``G = 1`` for R = 1), furnished by one worker
+R at a time, in index order, the next room starting when one ends, each module's forward
+pass batched across the rooms under way (``lockstep.run``). A room's ``seconds`` in the
+manifest is then its group's wall time shared equally among the rooms it finished.
 
 Determinism: a room depends only on its index, the seed, its source, the synthesis options,
 the lockstep R and the weights, never on which worker furnished it or when. Every worker has a
 Synthesizer of its own and one torch thread, synthesis draws everything from the room's seed,
-and a group is always the same rooms: a group is furnished whole even when only some of its
-rooms are to be written (a run that resumes it; the last group, filled up beyond ``-n``, or to
-the end of a finite source). Timings live in the manifest, not in the scene files, so the same
-batch made by 1 or 2 processes or by Ray actors, with any ``-n``, gives byte-identical scene
-files. Rooms in lockstep are equal in distribution to rooms made one at a time, and nearly all
-are the same rooms (``lockstep``); with ``--lockstep 1`` each is the very room of the one-room
-command.
+and a group is always the same rooms, run from its first: a group of which only some rooms
+are to be written (a run that resumes it, the last one, cut by ``-n``) is run as far as those
+need, which is how far it would run whole. Timings live in the manifest, not in the scene
+files, so the same batch made by 1 or 2 processes or by Ray actors, with any ``-n``, gives
+byte-identical scene files. Rooms in lockstep are equal in distribution to rooms made one at a
+time, and nearly all are the same rooms (``lockstep``); with ``--lockstep 1`` each is the very
+room of the one-room command.
 
 Resumption: a room is skipped when the manifest has an ``ok`` row for it and every file this
 run asks for (scene, thumbnail, exports) exists; a room's row is appended only after its
@@ -71,7 +72,7 @@ from __future__ import annotations
 
 from collections import deque
 from contextlib import closing
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 import json
 import os
 from pathlib import Path
@@ -96,9 +97,13 @@ THUMBNAIL = {'figsize': (3.0, 3.0), 'dpi': 80, 'legend': False}   # 240 x 240 px
 # tqdm's bar with the rate always in rooms per second (its default turns slow rates over).
 PROGRESS = ('{desc}: {percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt} '
             '[{elapsed}<{remaining}, {rate_noinv_fmt}{postfix}]')
-# Rooms in lockstep beyond this gain nothing on a CPU (``benchmarks/lockstep.py``) and only
+# Rooms in lockstep beyond this gain nothing on a CPU (``benchmarks/bench_batch.py``) and only
 # hold more rooms' memory.
 MAX_LOCKSTEP = 64
+# A group is this many times R rooms: enough that the rounds in which the group's last rooms
+# finish, with fewer rooms under way, are few among its rounds; few enough that a resumed
+# group redoes little.
+GROUP_ROUNDS = 8
 # Groups of rooms queued at each worker, so that it starts the next group while the driver
 # is still writing the last one's files.
 IN_FLIGHT = 2
@@ -284,6 +289,19 @@ class WorkerSpec:
     exports: tuple[str, ...] = ()
 
 
+@dataclass(frozen=True)
+class RoomGroup:
+    """A lockstep group for one worker: its rooms, the indices of those to furnish (the run
+    ends when they are done), and how many rooms are under way at a time."""
+
+    jobs: list[RoomJob]
+    needed: frozenset[int]
+    width: int
+
+    def lost(self) -> list[RoomResult]:
+        return [_lost(j) for j in self.jobs if j.index in self.needed]
+
+
 @dataclass
 class RoomResult:
     row: dict
@@ -320,11 +338,16 @@ class Worker:
         self.name = f'{socket.gethostname()}:{os.getpid()}'
         self.shipped: set[str] = set()      # shared model files already sent to the driver
 
-    def furnish_group(self, jobs: list[RoomJob]) -> list[RoomResult]:
-        """Rooms ``jobs``, furnished in lockstep (see the module docstring)."""
+    def furnish_group(self, group: RoomGroup) -> list[RoomResult]:
+        """The rooms of ``group`` that were finished, the needed ones among them, furnished
+        in lockstep (see the module docstring)."""
         t0 = time.perf_counter()
-        results = lockstep.run([lambda job=job: self.furnish(job) for job in jobs])
-        share = round((time.perf_counter() - t0) / len(jobs), 4)
+        jobs = group.jobs
+        results = lockstep.run([lambda job=job: self.furnish(job) for job in jobs],
+                               group.width,
+                               [k for k, j in enumerate(jobs) if j.index in group.needed])
+        results = [r for r in results if r is not None]
+        share = round((time.perf_counter() - t0) / len(results), 4)
         for r in results:
             r.row['seconds'] = share
         return results
@@ -414,7 +437,7 @@ def _start_pool_worker(spec: WorkerSpec) -> None:
     _WORKER = Worker(spec)
 
 
-def _pool_furnish(group: list[RoomJob]) -> list[RoomResult]:
+def _pool_furnish(group: RoomGroup) -> list[RoomResult]:
     return _WORKER.furnish_group(group)
 
 
@@ -424,7 +447,7 @@ class RayWorker:
     def __init__(self, spec: WorkerSpec):
         self.worker = Worker(spec)
 
-    def furnish_group(self, group: list[RoomJob]) -> list[RoomResult]:
+    def furnish_group(self, group: RoomGroup) -> list[RoomResult]:
         return self.worker.furnish_group(group)
 
 
@@ -436,7 +459,7 @@ def _lost(job: RoomJob) -> RoomResult:
                        'peak_mb': None}, {})
 
 
-def _pool_results(spec: WorkerSpec, groups: list[list[RoomJob]], workers: int
+def _pool_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int
                   ) -> Iterator[RoomResult]:
     """The rooms of ``groups`` furnished by ``workers`` processes, a group at a time each. A
     worker that dies (killed, out of memory) costs the rooms in flight, which fail with
@@ -465,7 +488,7 @@ def _pool_results(spec: WorkerSpec, groups: list[list[RoomJob]], workers: int
                         results = future.result()
                     except BrokenProcessPool:
                         broken = True
-                        yield from map(_lost, group)
+                        yield from group.lost()
                         continue
                     produced = True
                     yield from results
@@ -477,14 +500,14 @@ def _pool_results(spec: WorkerSpec, groups: list[list[RoomJob]], workers: int
                 produced = True
                 yield from future.result()
             else:
-                yield from map(_lost, group)
+                yield from group.lost()
         if broken and not produced:
             for group in remaining:
-                yield from map(_lost, group)
+                yield from group.lost()
             return
 
 
-def _ray_results(spec: WorkerSpec, groups: list[list[RoomJob]], workers: int | None,
+def _ray_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int | None,
                  address: str) -> Iterator[RoomResult]:
     """The rooms of ``groups`` furnished by Ray actors, a group at a time each, each actor's
     in the order it made them (see
@@ -701,8 +724,6 @@ def _check_directory(out: Path, identity: dict) -> None:
 def _check_weights(cfg: BatchConfig) -> Path:
     """The weights directory, its bundles for the shells' room types loaded once here so that
     a missing or broken file is one sentence before any worker starts."""
-    from dataclasses import replace
-
     from .synth import Synthesizer
     Synthesizer(cfg.weights_dir, cfg.synthesis)        # a device that is not there
     synth = Synthesizer(cfg.weights_dir, replace(cfg.synthesis, device='cpu'))
@@ -713,13 +734,22 @@ def _check_weights(cfg: BatchConfig) -> Path:
     return synth.weights_dir.resolve()
 
 
-def _groups(jobs: list[RoomJob], pending: set[int], r: int) -> list[list[RoomJob]]:
-    """The lockstep groups that hold a pending room: room ``i`` is in group ``i // r``, and a
-    group is furnished whole (see the module docstring)."""
+def group_size(r: int) -> int:
+    """The rooms of a lockstep group of ``r`` rooms at a time (see the module docstring)."""
+    return 1 if r == 1 else GROUP_ROUNDS * r
+
+
+def _groups(jobs: list[RoomJob], pending: set[int], r: int) -> list[RoomGroup]:
+    """The lockstep groups that hold a pending room: room ``i`` is in group ``i // G``."""
     groups: dict[int, list[RoomJob]] = {}
     for j in jobs:
-        groups.setdefault(j.index // r, []).append(j)
-    return [g for _, g in sorted(groups.items()) if any(j.index in pending for j in g)]
+        groups.setdefault(j.index // group_size(r), []).append(j)
+    out = []
+    for _, g in sorted(groups.items()):
+        needed = frozenset(j.index for j in g if j.index in pending)
+        if needed:
+            out.append(RoomGroup(g, needed, r))
+    return out
 
 
 def _cores() -> int:
@@ -762,10 +792,10 @@ def run_batch(cfg: BatchConfig, echo: Callable[[str], None] = print) -> BatchSum
     exports = parse_formats(','.join(cfg.exports))
     out = Path(cfg.out)
     weights = _check_weights(cfg)
-    # A group is always the same rooms (see the module docstring): the last one is filled up
-    # beyond -n with rooms that are furnished and not written.
-    r = cfg.lockstep
-    everything = cfg.source.jobs(cfg.seed, None if cfg.n is None else -(-cfg.n // r) * r)
+    # A group is always the same rooms (see the module docstring): the last one goes on
+    # beyond -n with rooms that start while the last needed ones are under way.
+    r, g = cfg.lockstep, group_size(cfg.lockstep)
+    everything = cfg.source.jobs(cfg.seed, None if cfg.n is None else -(-cfg.n // g) * g)
     jobs = everything[:cfg.n]
     if cfg.n is not None and len(jobs) < cfg.n:
         echo(f'{cfg.source.path} holds {len(jobs)} rooms: furnishing those, not {cfg.n}')
@@ -785,7 +815,7 @@ def run_batch(cfg: BatchConfig, echo: Callable[[str], None] = print) -> BatchSum
     peaks: dict[str, float] = {}
     try:
         if pending:
-            groups = [[cfg.source.load(j) for j in g] for g in groups]
+            groups = [replace(g, jobs=[cfg.source.load(j) for j in g.jobs]) for g in groups]
             if cfg.ray:
                 results = _ray_results(spec, groups, workers, cfg.ray)
             else:

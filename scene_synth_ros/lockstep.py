@@ -24,8 +24,9 @@ coordinator holds inference mode for the whole group) is shared by the rooms.
 """
 from __future__ import annotations
 
+from collections import deque
 from dataclasses import dataclass
-from typing import Callable, Sequence, TypeVar
+from typing import Callable, Collection, Sequence, TypeVar
 
 from greenlet import getcurrent, greenlet
 import torch
@@ -38,6 +39,22 @@ T = TypeVar('T')
 #   orientation  (crops, cats, z)   -> (outputs, snap logits)
 #   dimensions   (crops, cats, z)   -> (log footprints,)
 MODULE_CALLS = ('category', 'location', 'orientation', 'dimensions')
+
+
+def prepare(networks: dict) -> None:
+    """``networks`` made ready for synthesis: on the CPU, their convolutions' weights laid
+    out channels-last, as ``forward`` lays out the images. oneDNN convolves such images of 46
+    channels faster (``benchmarks/batch_gain.py --channels-last``); the sums go in another
+    order, so the rooms differ from channels-first ones in the last digits, no more."""
+    for net in networks.values():
+        if next(net.parameters()).device.type == 'cpu':
+            net.to(memory_format=torch.channels_last)
+
+
+def _laid_out(x: torch.Tensor) -> torch.Tensor:
+    if x.dim() == 4 and x.device.type == 'cpu':
+        return x.contiguous(memory_format=torch.channels_last)
+    return x
 
 
 @dataclass
@@ -57,6 +74,7 @@ class Request:
 def forward(networks: dict, module: str, *args: torch.Tensor
             ) -> tuple[torch.Tensor | None, ...]:
     """``module``'s forward pass over a batch (see ``MODULE_CALLS``)."""
+    args = tuple(_laid_out(a) for a in args)
     if module == 'category':
         return (networks['category'](*args),)
     if module == 'location':
@@ -107,25 +125,60 @@ def ask(networks: dict, module: str, *args: torch.Tensor
     return forward(networks, module, *args)
 
 
-def run(calls: Sequence[Callable[[], T]]) -> list[T | Exception]:
+def _next_call(waiting: dict[int, Request]) -> list[int]:
+    """The rooms whose calls are served next: those waiting on the bundle and module that
+    most rooms wait on (the first such in room order on a tie), so that rooms that fell out
+    of step wait for the others and the batches stay full."""
+    calls: dict[tuple[int, str], list[int]] = {}
+    for k in sorted(waiting):
+        r = waiting[k]
+        calls.setdefault((id(r.networks), r.module), []).append(k)
+    return max(calls.values(), key=len)
+
+
+def run(calls: Sequence[Callable[[], T]], width: int | None = None,
+        needed: Collection[int] | None = None) -> list[T | Exception | None]:
     """Each call's result, or the exception it raised, the calls made in lockstep (see the
-    module docstring). Anything but an ``Exception`` (Ctrl-C) ends the group and is raised."""
+    module docstring): at most ``width`` of them at a time (all by default), the next one
+    started, in order, when one ends. With ``needed`` (indices), the run ends as soon as
+    those calls have ended; the others that had not are abandoned (None). What happened up to
+    then is what happens in a run of all the calls, so a needed call's result does not
+    depend on ``needed``. Anything but an ``Exception`` (Ctrl-C) ends the run and is
+    raised."""
     rooms = [Room(c) for c in calls]
     results: list = [None] * len(rooms)
-    answers: dict[int, object] = {k: () for k in range(len(rooms))}
-    with torch.inference_mode():
-        while answers:
-            requests: dict[int, Request] = {}
-            for k, answer in answers.items():
-                try:
-                    out = rooms[k].switch(*answer)
-                except Exception as e:        # noqa: BLE001 - one room's end, not the group's
-                    results[k] = e
-                    continue
-                if rooms[k].dead:
+    todo = set(range(len(rooms)) if needed is None else needed)
+    width = len(rooms) if width is None else width
+    queue = deque(range(min(width, len(rooms))))       # rooms to switch into, in order
+    answers: dict[int, tuple] = {k: () for k in queue}
+    started = len(queue)
+    waiting: dict[int, Request] = {}
+    try:
+        with torch.inference_mode():
+            while todo:
+                while queue:
+                    k = queue.popleft()
+                    try:
+                        out = rooms[k].switch(*answers.pop(k))
+                    except Exception as e:    # noqa: BLE001 - one room's end, not the group's
+                        out = e
+                    if not rooms[k].dead:
+                        waiting[k] = out
+                        continue
                     results[k] = out
-                else:
-                    requests[k] = out
-            served = serve(list(requests.values()))
-            answers = {k: (a,) for k, a in zip(requests, served, strict=True)}
+                    todo.discard(k)
+                    if started < len(rooms):
+                        answers[started] = ()
+                        queue.append(started)
+                        started += 1
+                if not waiting or not todo:
+                    break
+                ks = _next_call(waiting)
+                for k, answer in zip(ks, serve([waiting.pop(k) for k in ks]), strict=True):
+                    answers[k] = (answer,)
+                    queue.append(k)
+    finally:
+        for room in rooms:          # abandoned (or left by Ctrl-C): unwound now, not at exit
+            if room and not room.dead:
+                room.throw()
     return results

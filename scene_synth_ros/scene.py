@@ -30,20 +30,26 @@ class Wall:
     start: tuple[float, float]
     end: tuple[float, float]
 
-    @property
+    # Cached (synthesis asks each wall for them tens of thousands of times a second) and
+    # read-only, since every caller shares them.
+    @cached_property
     def length(self) -> float:
         return math.dist(self.start, self.end)
 
-    @property
+    @cached_property
     def direction(self) -> np.ndarray:
         d = np.subtract(self.end, self.start)
-        return d / np.linalg.norm(d)
+        d = d / np.linalg.norm(d)
+        d.flags.writeable = False
+        return d
 
-    @property
+    @cached_property
     def normal(self) -> np.ndarray:
         """Unit normal pointing into the room (floor polygons are kept counter-clockwise)."""
         dx, dy = self.direction
-        return np.array([-dy, dx])
+        n = np.array([-dy, dx])
+        n.flags.writeable = False
+        return n
 
     @property
     def inward_yaw(self) -> float:
@@ -149,6 +155,14 @@ class Room:
 
     def wall_of(self, opening: Opening, tol: float = 0.01) -> Wall | None:
         """The wall an opening lies on (within ``tol`` metres, whole width on the wall)."""
+        # Remembered per room: the design rules ask it for every door and window at every
+        # candidate placement.
+        known = self.__dict__.setdefault('_walls_of', {})
+        if (opening, tol) not in known:
+            known[opening, tol] = self._find_wall(opening, tol)
+        return known[opening, tol]
+
+    def _find_wall(self, opening: Opening, tol: float) -> Wall | None:
         best = None
         for wall in self.walls:
             dist = wall.distance_to(opening.position)

@@ -38,16 +38,17 @@ def batch(tiny_weights, *args):
 
 def test_same_rooms_on_one_and_two_workers_and_a_killed_run_resumes(cli, tiny_weights,
                                                                     tmp_path):
-    # Groups of 4 rooms in lockstep: rooms 0-3, and 4-5 furnished with 6-7, not written.
+    # Two rooms at a time in lockstep, in groups of 16: rooms 0-15 on one worker, 16-17 on
+    # the other, which starts room 18 (not written) while they are under way.
     a, b = tmp_path / 'a', tmp_path / 'b'
-    cli(*batch(tiny_weights, '-n', 6, '--workers', 1, '--lockstep', 4, '--out', a))
-    proc = cli(*batch(tiny_weights, '-n', 6, '--workers', 2, '--lockstep', 4, '--out', b))
-    assert '6 furnished and 0 failed' in proc.stdout and 'on 2 worker processes' in proc.stdout
-    assert scenes(a) == scenes(b) and len(scenes(a)) == 6
+    cli(*batch(tiny_weights, '-n', 18, '--workers', 1, '--lockstep', 2, '--out', a))
+    proc = cli(*batch(tiny_weights, '-n', 18, '--workers', 2, '--lockstep', 2, '--out', b))
+    assert '18 furnished and 0 failed' in proc.stdout and 'on 2 worker processes' in proc.stdout
+    assert scenes(a) == scenes(b) and len(scenes(a)) == 18
     assert [stable(r) for r in rows(a)] == [stable(r) for r in rows(b)]
     made = rows(a)
-    assert [r['index'] for r in made] == list(range(6))
-    assert [r['seed'] for r in made] == list(range(5, 11))
+    assert [r['index'] for r in made] == list(range(18))
+    assert [r['seed'] for r in made] == list(range(5, 23))
     assert made[2]['layout'] == 'bathroom shell: corpus seed 5, room 2'
     for r in made:
         scene = load_scene(a / 'scenes' / f'{r["room"]}.json')
@@ -55,7 +56,7 @@ def test_same_rooms_on_one_and_two_workers_and_a_killed_run_resumes(cli, tiny_we
         assert r['seconds'] > 0 and r['peak_mb'] > 0
     assert sum(r['objects'] for r in made) > 0
     summary = json.loads((b / 'summary.json').read_text())
-    assert summary['rooms_ok'] == 6 and summary['workers'] == 2
+    assert summary['rooms_ok'] == 18 and summary['workers'] == 2
 
     # Without lockstep, room 0 is the room of the one-room command (with one torch thread, as
     # a worker has).
@@ -70,29 +71,29 @@ def test_same_rooms_on_one_and_two_workers_and_a_killed_run_resumes(cli, tiny_we
     assert (tmp_path / 'one.json').read_bytes() == scenes(tmp_path / 'alone')['room_000000.json']
 
     # A run killed while writing room 4's row: its scene is there, its row half-written;
-    # room 5 was never finished.
+    # room 5 was never finished, the rows after it never written. Resumed with more rooms.
     lines = (a / 'manifest.jsonl').read_text().splitlines(keepends=True)
     (a / 'manifest.jsonl').write_text(''.join(lines[:4]) + lines[4][:30])
     (a / 'scenes' / 'room_000005.json').unlink()
-    proc = cli(*batch(tiny_weights, '-n', 8, '--workers', 2, '--lockstep', 4, '--out', a))
-    assert '4 of 8 rooms already there, 4 to furnish' in proc.stdout
-    assert '4 furnished and 0 failed' in proc.stdout
+    proc = cli(*batch(tiny_weights, '-n', 20, '--workers', 2, '--lockstep', 2, '--out', a))
+    assert '4 of 20 rooms already there, 16 to furnish' in proc.stdout
+    assert '16 furnished and 0 failed' in proc.stdout
     resumed = rows(a)
-    assert [r['index'] for r in resumed] == list(range(8))
-    assert [stable(r) for r in resumed[:6]] == [stable(r) for r in made]
-    assert {k: v for k, v in scenes(a).items() if k < 'room_000006'} == scenes(b)
-    proc = cli(*batch(tiny_weights, '-n', 8, '--lockstep', 4, '--out', a))
-    assert '0 furnished and 0 failed' in proc.stdout and '8 already there' in proc.stdout
-    # One room of a group lost: the group is furnished whole again, that room alone written,
-    # the same as before.
+    assert [r['index'] for r in resumed] == list(range(20))
+    assert [stable(r) for r in resumed[:18]] == [stable(r) for r in made]
+    assert {k: v for k, v in scenes(a).items() if k < 'room_000018'} == scenes(b)
+    proc = cli(*batch(tiny_weights, '-n', 20, '--lockstep', 2, '--out', a))
+    assert '0 furnished and 0 failed' in proc.stdout and '20 already there' in proc.stdout
+    # One room of a group lost: the group is run again as far as that room needs, that room
+    # alone written, the same as before.
     before = scenes(a)
     (a / 'scenes' / 'room_000001.json').unlink()
-    proc = cli(*batch(tiny_weights, '-n', 8, '--lockstep', 4, '--out', a))
+    proc = cli(*batch(tiny_weights, '-n', 20, '--lockstep', 2, '--out', a))
     assert '1 furnished and 0 failed' in proc.stdout and scenes(a) == before
-    assert len(rows(a)) == 8
+    assert len(rows(a)) == 20
     # The lockstep R is part of what the batch is.
-    proc = cli(*batch(tiny_weights, '-n', 8, '--out', a), ok=False)
-    assert proc.returncode != 0 and 'lockstep 4 there, 8 now' in proc.stderr
+    proc = cli(*batch(tiny_weights, '-n', 20, '--out', a), ok=False)
+    assert proc.returncode != 0 and 'lockstep 2 there, 8 now' in proc.stderr
 
 
 def test_bad_layouts_are_manifest_rows_and_the_batch_goes_on(cli, tiny_weights, tmp_path):
@@ -249,17 +250,18 @@ def test_ray_gives_the_rooms_of_the_process_pool(cli, tiny_weights, tmp_path):
     assert not ray.is_initialized()
     before = _descendants()
     pool, on_ray = tmp_path / 'pool', tmp_path / 'ray'
-    # Groups of 2 in lockstep, so that 3 rooms are work for 2 workers.
-    cli(*batch(tiny_weights, '-n', 5, '--workers', 2, '--lockstep', 2, '--out', pool))
+    # One room at a time, so that 3 rooms are work for 2 workers (lockstep groups are the
+    # same on Ray: ``Worker.furnish_group``).
+    cli(*batch(tiny_weights, '-n', 5, '--workers', 2, '--lockstep', 1, '--out', pool))
     # With no address the batch starts a Ray of --workers CPUs for itself, and stops it.
-    proc = cli(*batch(tiny_weights, '-n', 3, '--workers', 2, '--lockstep', 2, '--ray',
+    proc = cli(*batch(tiny_weights, '-n', 3, '--workers', 2, '--lockstep', 1, '--ray',
                       '--out', on_ray))
     assert 'on 2 Ray workers' in proc.stdout and not ray.is_initialized()
     assert not _gone(before), 'Ray left processes behind'
     # A driver already on a Ray uses it (here a local one of 1 CPU: one actor) and resumes.
     ray.init(num_cpus=1, include_dashboard=False, logging_level='WARNING')
     try:
-        proc = cli(*batch(tiny_weights, '-n', 5, '--lockstep', 2, '--ray', '--out', on_ray))
+        proc = cli(*batch(tiny_weights, '-n', 5, '--lockstep', 1, '--ray', '--out', on_ray))
         assert '3 already there' in proc.stdout and 'on 1 Ray worker)' in proc.stdout
         assert ray.is_initialized()
     finally:
@@ -293,7 +295,7 @@ def test_a_killed_worker_costs_its_rooms_not_the_batch(tiny_weights, tmp_path):
     import sys
     out = tmp_path / 'out'
     cmd = [sys.executable, '-m', 'scene_synth_ros.cli', *map(str, batch(
-        tiny_weights, '-n', 40, '--workers', 2, '--out', out))]
+        tiny_weights, '-n', 40, '--workers', 2, '--lockstep', 1, '--out', out))]
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         deadline = time.monotonic() + 120
