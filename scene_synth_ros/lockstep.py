@@ -41,22 +41,6 @@ T = TypeVar('T')
 MODULE_CALLS = ('category', 'location', 'orientation', 'dimensions')
 
 
-def prepare(networks: dict) -> None:
-    """``networks`` made ready for synthesis: on the CPU, their convolutions' weights laid
-    out channels-last, as ``forward`` lays out the images. oneDNN convolves such images of 46
-    channels faster (``benchmarks/batch_gain.py --channels-last``); the sums go in another
-    order, so the rooms differ from channels-first ones in the last digits, no more."""
-    for net in networks.values():
-        if next(net.parameters()).device.type == 'cpu':
-            net.to(memory_format=torch.channels_last)
-
-
-def _laid_out(x: torch.Tensor) -> torch.Tensor:
-    if x.dim() == 4 and x.device.type == 'cpu':
-        return x.contiguous(memory_format=torch.channels_last)
-    return x
-
-
 @dataclass
 class Request:
     """One network call of one room: ``module`` of ``networks`` (a bundle's) on ``args``,
@@ -74,7 +58,6 @@ class Request:
 def forward(networks: dict, module: str, *args: torch.Tensor
             ) -> tuple[torch.Tensor | None, ...]:
     """``module``'s forward pass over a batch (see ``MODULE_CALLS``)."""
-    args = tuple(_laid_out(a) for a in args)
     if module == 'category':
         return (networks['category'](*args),)
     if module == 'location':

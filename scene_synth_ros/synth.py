@@ -53,7 +53,7 @@ from .geometry import (
     overlaps_any,
     support_fraction,
 )
-from .lockstep import ask, prepare
+from .lockstep import ask
 from .networks.bundle import (
     Bundle,
     BundleError,
@@ -310,9 +310,7 @@ class Synthesizer:
         """The networks of ``room_type``; raises ``BundleError`` naming a bad file."""
         rt = resolve_room_type(room_type)
         if rt not in self._bundles:
-            bundle = load_bundle(bundle_path(self.weights_dir, rt), self.device)
-            prepare(bundle.networks)
-            self._bundles[rt] = bundle
+            self._bundles[rt] = load_bundle(bundle_path(self.weights_dir, rt), self.device)
         return self._bundles[rt]
 
     def load_all(self) -> None:
