@@ -2,9 +2,9 @@
 
 For every room type and every robot radius, ``-n`` rooms (default 100) are synthesized with
 the shipped weights into the shells of held-out corpus rooms (corpus seed 1, synthesis seeds
-0..n-1), for a robot of that radius with the default reach (0.5 m). Each room is checked by
-``tests/raster_robot.py`` (2 cm cells, no shapely, no code of ``robot``): the doors
-connected and every first-tier object reached. Printed per room type and radius: rooms
+0..n-1), for a robot of that radius with the default reach (``Robot().reach``, 0.15 m).
+Each room is checked by ``tests/raster_robot.py`` (2 cm cells, no shapely, no code of
+``robot``): the doors connected and every first-tier object reached. Printed per room type and radius: rooms
 furnished, rooms refused because the robot cannot drive between the doors even in the empty
 room (confirmed on the raster), rooms the raster finds breaking the promise (the target is
 0), objects per room, the median share of free floor the robot drives over, and the median
@@ -50,10 +50,10 @@ def _run(job):
     try:
         result = _SYNTHS[radius].generate(room, seed=i)
     except SynthesisError:
-        v = check(Scene(room, []), radius, 0.5, 0.0, OPERATED_FRONT, slack=-0.04)
+        v = check(Scene(room, []), radius, Robot().reach, 0.0, OPERATED_FRONT, slack=-0.04)
         return rt, radius, 'refused', not v.doors_connected, 0, 0.0, 0.0
     seconds = time.perf_counter() - t
-    v = check(result.scene, radius, 0.5, 0.0, OPERATED_FRONT)
+    v = check(result.scene, radius, Robot().reach, 0.0, OPERATED_FRONT)
     kept = v.doors_connected and not v.unreachable and result.robot.kept
     return (rt, radius, 'kept' if kept else 'broken', True, len(result.scene),
             result.robot.reachable_floor, seconds)
@@ -72,7 +72,9 @@ def main() -> int:
     t0 = time.perf_counter()
     with process_pool(args.workers, _init_worker, ()) as pool:
         rows = list(pool.map(_run, jobs, chunksize=4))
-    print(f'robot promise: {args.n} held-out shells per room type and radius, reach 0.5 m, '
+    from scene_synth_ros.robot import Robot
+    print(f'robot promise: {args.n} held-out shells per room type and radius, reach '
+          f'{Robot().reach:g} m, '
           f'checked on a {2} cm raster ({time.perf_counter() - t0:.0f} s, '
           f'{args.workers} workers)\n')
     print(f'{"room type":10s} {"radius":>6s} {"furnished":>9s} {"refused":>8s} '

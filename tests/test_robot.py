@@ -159,7 +159,8 @@ def test_a_completed_room_keeps_what_held_and_says_what_did_not(synth):
     assert result.robot.unreachable == ('wardrobe',)
     assert result.scene.meta['robot']['promise_kept'] is False
     added = [o for o in result.scene.first_tier if o.id not in ('wardrobe', 'bed')]
-    verdict = raster_check(result.scene, 0.2, 0.5, 0.0, OPERATED_FRONT)
+    r = synth.config.robot
+    verdict = raster_check(result.scene, r.radius, r.reach, r.clearance, OPERATED_FRONT)
     assert verdict.doors_connected
     assert set(verdict.unreachable) <= {'wardrobe'}, (verdict, added)
 
@@ -184,14 +185,14 @@ def _synthesize_and_check(job):
     try:
         result = synth.generate(room, seed=i)
     except SynthesisError as e:                          # too narrow for this robot
-        wider = raster_check(Scene(room, []), radius, 0.5, 0.0, OPERATED_FRONT,
+        wider = raster_check(Scene(room, []), radius, Robot().reach, 0.0, OPERATED_FRONT,
                              slack=-2 * CELL)
         return rt, i, radius, 'refused', str(e), wider.doors_connected
     scene = result.scene
     meta = scene.meta['robot']
     ok_meta = (meta['radius'] == radius and meta['promise_kept'] and
                parse_scene(dump_scene(scene)).meta['robot'] == meta)
-    verdict = raster_check(scene, radius, 0.5, 0.0, OPERATED_FRONT)
+    verdict = raster_check(scene, radius, meta['reach'], 0.0, OPERATED_FRONT)
     return (rt, i, radius, 'furnished', ok_meta and result.robot.kept,
             verdict.doors_connected and not verdict.unreachable)
 
