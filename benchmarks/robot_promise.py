@@ -4,8 +4,8 @@ For every room type and every robot radius, ``-n`` rooms (default 100) are synth
 the shipped weights into the shells of held-out corpus rooms (corpus seed 1, synthesis seeds
 0..n-1), for a robot of that radius with the default reach (``Robot().reach``, 0.15 m).
 Each room is checked by ``tests/raster_robot.py`` (2 cm cells, no shapely, no code of
-``robot``): the doors connected and every first-tier object reached. Printed per room type and radius: rooms
-furnished, rooms refused because the robot cannot drive between the doors even in the empty
+``robot``): the doors connected and every first-tier object reached. Printed per room type
+and radius: rooms furnished, rooms refused because the robot cannot drive between the doors even in the empty
 room (confirmed on the raster), rooms the raster finds breaking the promise (the target is
 0), objects per room, the median share of free floor the robot drives over, and the median
 seconds per room.
