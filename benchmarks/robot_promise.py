@@ -5,10 +5,10 @@ the shipped weights into the shells of held-out corpus rooms (corpus seed 1, syn
 0..n-1), for a robot of that radius with the default reach (``Robot().reach``, 0.15 m).
 Each room is checked by ``tests/raster_robot.py`` (2 cm cells, no shapely, no code of
 ``robot``): the doors connected and every first-tier object reached. Printed per room type
-and radius: rooms furnished, rooms refused because the robot cannot drive between the doors even in the empty
-room (confirmed on the raster), rooms the raster finds breaking the promise (the target is
-0), objects per room, the median share of free floor the robot drives over, and the median
-seconds per room.
+and radius: rooms furnished, rooms refused because the robot cannot drive between the doors
+even in the empty room (confirmed on the raster), rooms the raster finds breaking the
+promise (the target is 0), objects per room, the median share of free floor the robot drives
+over, and the median seconds per room.
 
     .venv/bin/python benchmarks/robot_promise.py [-n 100] [--radii 0.15,0.2,0.3,0.4]
         [--room-type all] [--workers 2]
