@@ -7,6 +7,7 @@ from conftest import tiny_config
 import pytest
 import torch
 
+from scene_synth_ros import lockstep
 from scene_synth_ros.categories import ROOM_TYPES
 from scene_synth_ros.corpus.generate import empty_room
 from scene_synth_ros.geometry import check_scene
@@ -64,6 +65,20 @@ def test_synthesis_on_cuda_is_valid_and_reproducible():
         assert len(a.objects) >= 2, rt
         assert check_scene(a).ok, (rt, check_scene(a).summary())
         assert [o.to_dict() for o in a.objects] == [o.to_dict() for o in b.objects], rt
+
+
+def test_rooms_in_lockstep_on_cuda_are_valid_and_nearly_all_the_rooms_made_alone():
+    synth = Synthesizer(config=SynthConfig(device='cuda'))
+    rooms = [empty_room(ROOM_TYPES[i % len(ROOM_TYPES)], 100 + i) for i in range(8)]
+    alone = [synth.generate(r, seed=i).scene for i, r in enumerate(rooms)]
+    grouped = [s.scene for s in lockstep.run(
+        [lambda r=r, i=i: synth.generate(r, seed=i) for i, r in enumerate(rooms)], width=4)]
+    for g in grouped:
+        assert check_scene(g).ok and g.objects
+    same = sum([(o.category, o.model_id) for o in a.objects] ==
+               [(o.category, o.model_id) for o in g.objects]
+               for a, g in zip(alone, grouped, strict=True))
+    assert same >= 6, f'{same} of 8 rooms the same'
 
 
 def test_training_steps_on_cuda_with_pinned_loader_workers(tmp_path):
