@@ -136,8 +136,10 @@ def run(calls: Sequence[Callable[[], T]], width: int | None = None,
     answers: dict[int, tuple] = {k: () for k in queue}
     started = len(queue)
     waiting: dict[int, Request] = {}
-    try:
-        with torch.inference_mode():
+    # The rooms enter and leave inference mode inside the group's: a room that left it after
+    # the group had would put back the mode it found, and leave the thread in it.
+    with torch.inference_mode():
+        try:
             while todo:
                 while queue:
                     k = queue.popleft()
@@ -160,8 +162,8 @@ def run(calls: Sequence[Callable[[], T]], width: int | None = None,
                 for k, answer in zip(ks, serve([waiting.pop(k) for k in ks]), strict=True):
                     answers[k] = (answer,)
                     queue.append(k)
-    finally:
-        for room in rooms:          # abandoned (or left by Ctrl-C): unwound now, not at exit
-            if room and not room.dead:
-                room.throw()
+        finally:
+            for room in rooms:      # abandoned (or left by Ctrl-C): unwound now, in the group
+                if room and not room.dead:
+                    room.throw()
     return results

@@ -130,6 +130,8 @@ def test_a_run_cut_short_at_the_rooms_needed_gives_them_as_a_whole_run_does(synt
     cut = lockstep.run(calls, width=2, needed=[2])
     assert objects(cut[2].scene) == objects(whole[2].scene)
     assert cut[5] is None                   # never started, or abandoned under way
+    # The abandoned rooms were unwound inside the group: the caller's torch is as it was.
+    assert not torch.is_inference_mode_enabled() and torch.is_grad_enabled()
     assert all(r is not None for r in whole)
     # Two at a time is not all at once: the rooms' calls are batched differently, yet the
     # rooms are (nearly always) the same.
