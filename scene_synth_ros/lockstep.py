@@ -3,10 +3,12 @@ across them.
 
 Every room runs the ordinary synthesis code (``Synthesizer.generate`` or ``complete``) in a
 greenlet of its own (``Room``). Where that code needs a network it hands a ``Request`` to
-the coordinator and waits (``ask``). The coordinator works in rounds: every live room runs
-until its next request or its end, then the round's requests are served, those of one
-bundle and module concatenated into one forward pass (``serve``), and each room gets its
-slice. A room alone is served the same way, as a batch of one, with no greenlet.
+the coordinator and waits (``ask``). The coordinator works in rounds: the rooms it has
+answered run, in order, until their next request or their end; then the requests of the
+bundle and module that most rooms wait on are served as one forward pass (``serve``), each
+room getting its slice, while the others wait, so that rooms fallen out of step fall back
+in and the batches stay full. At most ``width`` rooms are under way; when one ends the next
+starts. A room alone is served the same way, as a batch of one, with no greenlet.
 
 A room draws all its random numbers from its own seed, in the same order as alone: the
 CVAEs' noise is drawn by the room before it asks (``ConditionalVAE.noise``). So a room in
