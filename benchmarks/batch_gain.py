@@ -1,7 +1,7 @@
 """What batching buys each module: milliseconds per forward pass and per sample, by batch size.
 
     .venv/bin/python benchmarks/batch_gain.py [--room-type bedroom] [--sizes 1,4,8,16,32]
-                                              [--threads 1] [--device cpu]
+                                              [--threads 1] [--device cpu] [--channels-last]
 
 Synthesis calls the category and location modules on one image per step and the orientation,
 snap and dimensions modules on the few candidate placements of one location draw; rooms in
@@ -10,7 +10,9 @@ lockstep (issue 16) would stack those calls across rooms. This times the shipped
 the median of 20 passes after 3 warm-ups. One torch thread by default, as a batch worker runs.
 Last, how far a sample's outputs in the largest batch are from its outputs alone: zero would
 let lockstep promise the very rooms of one-at-a-time synthesis; anything else, rooms equal in
-distribution.
+distribution. ``--channels-last`` lays the networks' weights and the images out channels-last
+(tried for synthesis on the CPU and not kept: faster at a batch of 1, slower at 4-8 for the
+category and dimensions modules).
 """
 import argparse
 from functools import partial
@@ -50,6 +52,7 @@ def main() -> int:
     ap.add_argument('--sizes', default='1,4,8,16,32')
     ap.add_argument('--threads', type=int, default=1)
     ap.add_argument('--device', default='cpu', choices=('cpu', 'cuda'))
+    ap.add_argument('--channels-last', action='store_true')
     args = ap.parse_args()
     import torch
     torch.set_num_threads(args.threads)
@@ -59,16 +62,21 @@ def main() -> int:
     from scene_synth_ros.render import num_channels
     bundle = load_bundle(weights_dir() / f'{args.room_type}.pt', args.device)
     nets = {name: net.float().eval() for name, net in bundle.networks.items()}
+    layout = torch.channels_last if args.channels_last else torch.contiguous_format
+    for net in nets.values():
+        net.to(memory_format=layout)
     channels = num_channels(args.room_type)
     categories = len(room_spec(args.room_type).names)
     sizes = [int(s) for s in args.sizes.split(',')]
     print(f'{args.room_type}, {args.device}, {torch.get_num_threads()} torch thread(s), '
-          f'{channels} channels, {bundle.config.model.resolution} px')
+          f'{channels} channels, {bundle.config.model.resolution} px'
+          + (', channels-last' if args.channels_last else ''))
     print(f'{"batch":>5s} ' + ' '.join(f'{m:>19s}' for m in nets))
     base = {}
     for b in sizes:
         x = torch.randn(b, channels, bundle.config.model.resolution,
-                        bundle.config.model.resolution, device=args.device)
+                        bundle.config.model.resolution, device=args.device
+                        ).contiguous(memory_format=layout)
         cat = torch.zeros(b, dtype=torch.long, device=args.device)
         counts = torch.zeros(b, categories, device=args.device)
         inputs = {'category': (x, counts), 'location': (x,), 'orientation': (x, cat),
