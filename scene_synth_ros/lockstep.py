@@ -74,6 +74,15 @@ def forward(networks: dict, module: str, *args: torch.Tensor
     raise ValueError(f'no network call {module!r}; the calls are {", ".join(MODULE_CALLS)}')
 
 
+def _cat(parts: list[torch.Tensor]) -> torch.Tensor:
+    """``parts`` one after another along the batch; images laid out channels-last stay so
+    (``torch.cat`` takes an image of a batch of one, whose layout it cannot tell, as
+    channels-first, and copies ten times slower)."""
+    if parts[0].dim() == 4 and parts[0].is_contiguous(memory_format=torch.channels_last):
+        return torch.cat([p.permute(0, 2, 3, 1) for p in parts]).permute(0, 3, 1, 2)
+    return torch.cat(parts)
+
+
 def serve(requests: Sequence[Request]) -> list[tuple[torch.Tensor | None, ...]]:
     """Each request's answer, the requests of one bundle and module answered by one forward
     pass over all their examples, in the order of the requests."""
@@ -86,8 +95,7 @@ def serve(requests: Sequence[Request]) -> list[tuple[torch.Tensor | None, ...]]:
         if len(ks) == 1:
             answers[ks[0]] = forward(first.networks, first.module, *first.args)
             continue
-        args = [torch.cat([requests[k].args[i] for k in ks])
-                for i in range(len(first.args))]
+        args = [_cat([requests[k].args[i] for k in ks]) for i in range(len(first.args))]
         outs = forward(first.networks, first.module, *args)
         sizes = [requests[k].size for k in ks]
         parts = [o.split(sizes) if o is not None else [None] * len(ks) for o in outs]
