@@ -10,9 +10,8 @@ lockstep (issue 16) would stack those calls across rooms. This times the shipped
 the median of 20 passes after 3 warm-ups. One torch thread by default, as a batch worker runs.
 Last, how far a sample's outputs in the largest batch are from its outputs alone: zero would
 let lockstep promise the very rooms of one-at-a-time synthesis; anything else, rooms equal in
-distribution. ``--channels-last`` lays the networks' weights and the images out channels-last
-(tried for synthesis on the CPU and not kept: faster at a batch of 1, slower at 4-8 for the
-category and dimensions modules).
+distribution. ``--channels-last`` lays the networks' weights and the images out channels-last,
+as synthesis does on the CPU (``Synthesizer._image``).
 """
 import argparse
 from functools import partial

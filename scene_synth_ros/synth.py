@@ -25,7 +25,10 @@ room in which the robot cannot drive between the doors is refused in one sentenc
 Three modes: ``generate`` (an empty room), ``complete`` (a partial room: keeps what is
 there) and ``suggest`` (k distinct proposals for the next object, nothing committed). Each is
 reproducible from its seed. ``Synthesis.timings`` has the seconds a room spent in each of
-``MODULES``: rendering images, each network (snap with orientation), and insertion.
+``MODULES``: rendering images, each network (snap with orientation), and insertion. Every
+network call goes through ``lockstep.ask``, so that rooms furnished together in lockstep
+(``lockstep.run``) share their forward passes; there a room's seconds also count the other
+rooms' work while it waited.
 """
 from __future__ import annotations
 
