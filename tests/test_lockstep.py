@@ -137,3 +137,22 @@ def test_a_run_cut_short_at_the_rooms_needed_gives_them_as_a_whole_run_does(synt
     # rooms are (nearly always) the same.
     assert sum(objects(a.scene) == objects(b.scene)
                for a, b in zip(whole, lockstep.run(calls), strict=True)) >= 5
+
+
+def test_images_are_drawn_channels_last_as_the_networks_take_them(synth):
+    # On the CPU the renderer draws into channels-last memory (no copy before the networks),
+    # the very pixels of a channels-first image; a batch of them stays channels-last when
+    # the rooms' requests are put together.
+    scene = synth.generate(empty_room('bedroom', HELDOUT_SEED, 1), seed=1).scene
+    renderer = synth._renderer(64)
+    channels = FIRST_CATEGORY + len(room_spec('bedroom').names)
+    drawn = renderer.render(scene, out=synth._image(64, channels))
+    assert (drawn == renderer.render(scene)).all()
+    image = torch.from_numpy(drawn)[None]
+    assert image.is_contiguous(memory_format=torch.channels_last)
+    batch = lockstep._cat([image, image])
+    assert batch.is_contiguous(memory_format=torch.channels_last)
+    assert torch.equal(batch, torch.cat([image.contiguous()] * 2))
+    conv = next(m for m in synth.bundle('bedroom').networks['location'].modules()
+                if isinstance(m, torch.nn.Conv2d))
+    assert conv.weight.is_contiguous(memory_format=torch.channels_last)
