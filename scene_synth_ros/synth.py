@@ -304,7 +304,7 @@ class Synthesizer:
             raise SynthesisError(str(e)) from None
         self._bundles: dict[str, Bundle] = {}
         # On the CPU the images are drawn, and the networks' weights laid out, channels-last:
-        # oneDNN convolves 46-channel images so laid out 1.3-1.8x faster
+        # oneDNN convolves 46-channel images so laid out 1.3-2.2x faster
         # (``benchmarks/batch_gain.py --channels-last``), and drawn that way they need no
         # copy to get there.
         self._channels_last = self.device.type == 'cpu'

@@ -93,7 +93,7 @@ def test_same_rooms_on_one_and_two_workers_and_a_killed_run_resumes(cli, tiny_we
     assert len(rows(a)) == 20
     # The lockstep R is part of what the batch is.
     proc = cli(*batch(tiny_weights, '-n', 20, '--out', a), ok=False)
-    assert proc.returncode != 0 and 'lockstep 2 there, 8 now' in proc.stderr
+    assert proc.returncode != 0 and 'lockstep 2 there, 16 now' in proc.stderr
 
 
 def test_bad_layouts_are_manifest_rows_and_the_batch_goes_on(cli, tiny_weights, tmp_path):
