@@ -27,8 +27,9 @@ The directory::
                       R, weights.
                       A later run into the directory must ask for the same rooms; -n, the
                       workers, the thumbnails and the exports may change.
-    manifest.jsonl    one JSON row per room, appended as each room finishes (so a killed run
-                      loses no finished room), sorted by index when a run ends
+    manifest.jsonl    one JSON row per room, appended as its worker sends its group back
+                      (each room alone with --lockstep 1), so a killed run loses only the
+                      groups under way; sorted by index when a run ends
     summary.json      the counts of the manifest and the last run's speed and memory
     scenes/room_000042.json
     png/room_000042.png              (--png: a 240-pixel thumbnail)
