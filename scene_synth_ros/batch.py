@@ -744,9 +744,10 @@ def group_size(r: int) -> int:
 
 def _groups(jobs: list[RoomJob], pending: set[int], r: int) -> list[RoomGroup]:
     """The lockstep groups that hold a pending room: room ``i`` is in group ``i // G``."""
+    size = group_size(r)
     groups: dict[int, list[RoomJob]] = {}
     for j in jobs:
-        groups.setdefault(j.index // group_size(r), []).append(j)
+        groups.setdefault(j.index // size, []).append(j)
     out = []
     for _, g in sorted(groups.items()):
         needed = frozenset(j.index for j in g if j.index in pending)

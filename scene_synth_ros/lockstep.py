@@ -83,14 +83,20 @@ def _cat(parts: list[torch.Tensor]) -> torch.Tensor:
     return torch.cat(parts)
 
 
+def _by_call(requests: dict[int, Request]) -> list[list[int]]:
+    """The keys of ``requests``, in order, grouped by the bundle and module they call."""
+    calls: dict[tuple[int, str], list[int]] = {}
+    for k in sorted(requests):
+        r = requests[k]
+        calls.setdefault((id(r.networks), r.module), []).append(k)
+    return list(calls.values())
+
+
 def serve(requests: Sequence[Request]) -> list[tuple[torch.Tensor | None, ...]]:
     """Each request's answer, the requests of one bundle and module answered by one forward
     pass over all their examples, in the order of the requests."""
     answers: list = [None] * len(requests)
-    groups: dict[tuple[int, str], list[int]] = {}
-    for k, r in enumerate(requests):
-        groups.setdefault((id(r.networks), r.module), []).append(k)
-    for ks in groups.values():
+    for ks in _by_call(dict(enumerate(requests))):
         first = requests[ks[0]]
         if len(ks) == 1:
             answers[ks[0]] = forward(first.networks, first.module, *first.args)
@@ -122,11 +128,7 @@ def _next_call(waiting: dict[int, Request]) -> list[int]:
     """The rooms whose calls are served next: those waiting on the bundle and module that
     most rooms wait on (the first such in room order on a tie), so that rooms that fell out
     of step wait for the others and the batches stay full."""
-    calls: dict[tuple[int, str], list[int]] = {}
-    for k in sorted(waiting):
-        r = waiting[k]
-        calls.setdefault((id(r.networks), r.module), []).append(k)
-    return max(calls.values(), key=len)
+    return max(_by_call(waiting), key=len)
 
 
 def run(calls: Sequence[Callable[[], T]], width: int | None = None,
@@ -142,8 +144,8 @@ def run(calls: Sequence[Callable[[], T]], width: int | None = None,
     results: list = [None] * len(rooms)
     todo = set(range(len(rooms)) if needed is None else needed)
     width = len(rooms) if width is None else width
-    queue = deque(range(min(width, len(rooms))))       # rooms to switch into, in order
-    answers: dict[int, tuple] = {k: () for k in queue}
+    # (room, what to switch into it with), in order: nothing to start a room, else its answer
+    queue = deque((k, ()) for k in range(min(width, len(rooms))))
     started = len(queue)
     waiting: dict[int, Request] = {}
     # The rooms enter and leave inference mode inside the group's: a room that left it after
@@ -152,9 +154,9 @@ def run(calls: Sequence[Callable[[], T]], width: int | None = None,
         try:
             while todo:
                 while queue:
-                    k = queue.popleft()
+                    k, answer = queue.popleft()
                     try:
-                        out = rooms[k].switch(*answers.pop(k))
+                        out = rooms[k].switch(*answer)
                     except Exception as e:    # noqa: BLE001 - one room's end, not the group's
                         out = e
                     if not rooms[k].dead:
@@ -163,15 +165,13 @@ def run(calls: Sequence[Callable[[], T]], width: int | None = None,
                     results[k] = out
                     todo.discard(k)
                     if started < len(rooms):
-                        answers[started] = ()
-                        queue.append(started)
+                        queue.append((started, ()))
                         started += 1
                 if not waiting or not todo:
                     break
                 ks = _next_call(waiting)
                 for k, answer in zip(ks, serve([waiting.pop(k) for k in ks]), strict=True):
-                    answers[k] = (answer,)
-                    queue.append(k)
+                    queue.append((k, (answer,)))
         finally:
             for room in rooms:      # abandoned (or left by Ctrl-C): unwound now, in the group
                 if room and not room.dead:

@@ -155,12 +155,16 @@ class Room:
 
     def wall_of(self, opening: Opening, tol: float = 0.01) -> Wall | None:
         """The wall an opening lies on (within ``tol`` metres, whole width on the wall)."""
-        # Remembered per room: the design rules ask it for every door and window at every
-        # candidate placement.
-        known = self.__dict__.setdefault('_walls_of', {})
+        known = self._walls_of
         if (opening, tol) not in known:
             known[opening, tol] = self._find_wall(opening, tol)
         return known[opening, tol]
+
+    @cached_property
+    def _walls_of(self) -> dict[tuple[Opening, float], Wall | None]:
+        """``wall_of``'s answers, remembered: the design rules ask it for every door and
+        window at every candidate placement."""
+        return {}
 
     def _find_wall(self, opening: Opening, tol: float) -> Wall | None:
         best = None
