@@ -77,7 +77,7 @@ def forward(networks: dict, module: str, *args: torch.Tensor
 def _cat(parts: list[torch.Tensor]) -> torch.Tensor:
     """``parts`` one after another along the batch; images laid out channels-last stay so
     (``torch.cat`` takes an image of a batch of one, whose layout it cannot tell, as
-    channels-first, and copies ten times slower)."""
+    channels-first, and takes the slow path of a copy across layouts)."""
     if parts[0].dim() == 4 and parts[0].is_contiguous(memory_format=torch.channels_last):
         return torch.cat([p.permute(0, 2, 3, 1) for p in parts]).permute(0, 3, 1, 2)
     return torch.cat(parts)
