@@ -6,12 +6,13 @@ For each ``--workers`` count and each ``--lockstep`` R, ``-n`` complete rooms of
 directory exactly as ``scene-synth generate -n N --out DIR --workers W --lockstep R`` does,
 start-up included; the runs are interleaved (every R for one worker count, then the next
 count). ``--location-batch`` sets ``SynthConfig.location_batch`` (candidate placements decoded
-together; default that of SynthConfig). A room's seconds in lockstep are its group's shared
-equally. With ``--soak
-N``, a batch of N rooms on ``--soak-workers`` workers, and each worker's resident memory after
-its 100th room and after its last (the issue's target: no growth beyond 50 MB after the first
-100 rooms); ``--soak-report DIR`` says the same of a soak directory kept with ``--keep``, also
-of one stopped before its end. The machine's load average is printed beside the figures: on a
+together; default that of SynthConfig). In lockstep a room's seconds are its group's wall
+time since the room before it ended (the mean is the group's time shared equally; the
+median, the pace once the group is under way). With ``--soak N``, a batch of N rooms on
+``--soak-workers`` workers, and each worker's resident memory after its 100th room and after
+its last (the issue's target: no growth beyond 50 MB after the first 100 rooms);
+``--soak-report DIR`` says the same of a soak directory kept with ``--keep``, also of one
+stopped before its end. The machine's load average is printed beside the figures: on a
 shared machine they are only as good as the cores were free.
 
     .venv/bin/python benchmarks/bench_batch.py [-n 200] [--workers 1 2] [--lockstep 1 8 32]

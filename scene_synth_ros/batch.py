@@ -27,9 +27,9 @@ The directory::
                       R, weights.
                       A later run into the directory must ask for the same rooms; -n, the
                       workers, the thumbnails and the exports may change.
-    manifest.jsonl    one JSON row per room, appended as its worker sends its group back
-                      (each room alone with --lockstep 1), so a killed run loses only the
-                      groups under way; sorted by index when a run ends
+    manifest.jsonl    one JSON row per room, appended as its worker sends it back, when
+                      the room ends (also in lockstep), so a killed run loses only the
+                      rooms under way; sorted by index when a run ends
     summary.json      the counts of the manifest and the last run's speed and memory
     scenes/room_000042.json
     png/room_000042.png              (--png: a 240-pixel thumbnail)
@@ -46,8 +46,9 @@ failed ``error``, the package's one-sentence reason. Every row has ``seconds`` a
 Rooms in lockstep (``lockstep``, ``--lockstep R``): the rooms of index ``kG`` to ``kG + G -
 1`` form group ``k`` (``G = GROUP_ROUNDS * R``; ``G = 1`` for R = 1), furnished by one worker
 R at a time, in index order, the next room starting when one ends, each module's forward
-pass batched across the rooms under way (``lockstep.run``). A room's ``seconds`` in the
-manifest is then its group's wall time shared equally among the rooms it finished.
+pass batched across the rooms under way (``lockstep.each``). A room's ``seconds`` in the
+manifest is then the group's wall time from the end of the room before it (from the start of
+the group for the first), so that the rooms of a group add up to its time.
 
 Determinism: a room depends only on its index, the seed, its source, the synthesis options,
 the lockstep R and the weights, never on which worker furnished it or when. Every worker has a
@@ -64,9 +65,10 @@ Resumption: a room is skipped when the manifest has an ``ok`` row for it and eve
 run asks for (scene, thumbnail, exports) exists; a room's row is appended only after its
 files are in place. A room that failed is tried again.
 
-Workers: ``parallel.process_pool`` processes, or Ray actors (``ray``, an optional
-dependency), one group of rooms at a time each. Workers send back the bytes of a room's
-files and the driver alone writes them (atomically, ``files.write_atomic``), so the output
+Workers: ``parallel.process_executor`` processes, or Ray actors (``ray``, an optional
+dependency), one group of rooms at a time each. Workers send back each room as it ends (a
+process through a queue, an actor as a Ray generator), with the bytes of its files, and the
+driver alone writes them (atomically, ``files.write_atomic``), so the output
 directory need exist only where the command runs, also on a cluster.
 """
 from __future__ import annotations
@@ -108,6 +110,8 @@ GROUP_ROUNDS = 8
 # Groups of rooms queued at each worker, so that it starts the next group while the driver
 # is still writing the last one's files.
 IN_FLIGHT = 2
+# How long the driver waits for a room before it looks at which groups have ended.
+POLL_SECONDS = 0.1
 LOST = ('its worker process died while this room or another one was in flight (killed, or '
         'out of memory?); run the batch again to retry it')
 
@@ -339,19 +343,20 @@ class Worker:
         self.name = f'{socket.gethostname()}:{os.getpid()}'
         self.shipped: set[str] = set()      # shared model files already sent to the driver
 
-    def furnish_group(self, group: RoomGroup) -> list[RoomResult]:
-        """The rooms of ``group`` that were finished, the needed ones among them, furnished
-        in lockstep (see the module docstring)."""
-        t0 = time.perf_counter()
+    def furnish_group(self, group: RoomGroup) -> Iterator[RoomResult]:
+        """The rooms of ``group`` furnished in lockstep (see the module docstring), each as
+        it ends: the needed ones, and any other that ended before the needed ones had. A
+        room's ``seconds`` is the group's wall time since the room before it ended (since
+        the start for the first), so that a group's rooms add up to its time."""
         jobs = group.jobs
-        results = lockstep.run([lambda job=job: self.furnish(job) for job in jobs],
-                               group.width,
-                               [k for k, j in enumerate(jobs) if j.index in group.needed])
-        results = [r for r in results if r is not None]
-        share = round((time.perf_counter() - t0) / len(results), 4)
-        for r in results:
-            r.row['seconds'] = share
-        return results
+        last = time.perf_counter()
+        for _, result in lockstep.each([lambda job=job: self.furnish(job) for job in jobs],
+                                       group.width,
+                                       [k for k, j in enumerate(jobs) if j.index in group.needed]):
+            now = time.perf_counter()
+            result.row['seconds'] = round(now - last, 4)
+            last = now
+            yield result
 
     def furnish(self, job: RoomJob) -> RoomResult:
         """Room ``job`` and its files, or a row saying in one sentence why it failed."""
@@ -429,17 +434,30 @@ class Worker:
 
 
 _WORKER: Worker | None = None
+_RESULTS = None         # the queue through which a pool worker sends each room as it ends
 
 
-def _start_pool_worker(spec: WorkerSpec) -> None:
-    global _WORKER
+def _start_pool_worker(spec: WorkerSpec, results) -> None:
+    global _WORKER, _RESULTS
     # Ctrl-C goes to the whole process group; the driver alone handles it (it stops the pool).
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    _WORKER = Worker(spec)
+    # The driver reads every room before it stops the pool, except when it stops early; then
+    # what was not read must not keep the worker from exiting.
+    results.cancel_join_thread()
+    _WORKER, _RESULTS = Worker(spec), results
 
 
-def _pool_furnish(group: RoomGroup) -> list[RoomResult]:
-    return _WORKER.furnish_group(group)
+def _pool_furnish(group: RoomGroup) -> int:
+    """Furnishes ``group``, sending each room to the driver as it ends; how many it sent."""
+    sent = 0
+    for result in _WORKER.furnish_group(group):
+        _RESULTS.put((_key(group), result))
+        sent += 1
+    return sent
+
+
+def _key(group: RoomGroup) -> int:
+    return group.jobs[0].index
 
 
 class RayWorker:
@@ -448,8 +466,9 @@ class RayWorker:
     def __init__(self, spec: WorkerSpec):
         self.worker = Worker(spec)
 
-    def furnish_group(self, group: RoomGroup) -> list[RoomResult]:
-        return self.worker.furnish_group(group)
+    def furnish_group(self, group: RoomGroup) -> Iterator[RoomResult]:
+        # A generator: Ray streams each room to the driver as it ends.
+        yield from self.worker.furnish_group(group)
 
 
 def _lost(job: RoomJob) -> RoomResult:
@@ -462,46 +481,52 @@ def _lost(job: RoomJob) -> RoomResult:
 
 def _pool_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int
                   ) -> Iterator[RoomResult]:
-    """The rooms of ``groups`` furnished by ``workers`` processes, a group at a time each. A
-    worker that dies (killed, out of memory) costs the rooms in flight, which fail with
-    ``LOST``; the others go on in new processes, unless a pool dies before furnishing
-    anything."""
-    from concurrent.futures import FIRST_COMPLETED, wait
+    """The rooms of ``groups`` furnished by ``workers`` processes, a group at a time each,
+    each room as it ends, each worker's in the order it made them (so that models it sends
+    once come before a later room that names them). A worker that dies (killed, out of
+    memory) costs the rooms in flight that had not come back, which fail with ``LOST``; the
+    others go on in new processes, unless a pool dies before furnishing anything."""
     from concurrent.futures.process import BrokenProcessPool
+    from queue import Empty
 
-    from .parallel import process_executor
+    from .parallel import process_executor, process_queue
     remaining = deque(groups)
     while remaining:
-        inflight: dict = {}             # future -> group, in the order they were submitted
+        results = process_queue()
+        pool = process_executor(workers, _start_pool_worker, (spec, results))
+        inflight: dict = {}             # future -> group
+        received: dict[int, set[int]] = {}  # group key -> indices of its rooms that came back
         produced = broken = False
-        pool = process_executor(workers, _start_pool_worker, (spec,))
         try:
             while (remaining or inflight) and not broken:
                 while remaining and len(inflight) < IN_FLIGHT * workers:
                     group = remaining.popleft()
+                    received[_key(group)] = set()
                     inflight[pool.submit(_pool_furnish, group)] = group
-                done, _ = wait(inflight, return_when=FIRST_COMPLETED)
-                # In submission order: a worker's rooms come in the order it made them, so
-                # models it sends once are written before a later room that names them.
-                for future in [f for f in inflight if f in done]:
-                    group = inflight.pop(future)
+                try:
+                    key, result = results.get(timeout=POLL_SECONDS)
+                except Empty:
+                    pass
+                else:
+                    received[key].add(result.row['index'])
+                    produced = True
+                    yield result
+                for future in [f for f in inflight if f.done()]:
                     try:
-                        results = future.result()
+                        sent = future.result()
                     except BrokenProcessPool:
                         broken = True
-                        yield from group.lost()
-                        continue
-                    produced = True
-                    yield from results
+                        break
+                    if len(received[_key(inflight[future])]) == sent:
+                        del inflight[future]
         finally:
             # also when the driver stops early (an error, Ctrl-C): queued rooms are dropped
             pool.shutdown(wait=True, cancel_futures=True)
-        for future, group in inflight.items():    # the pool broke while these were out
-            if not future.cancelled() and future.exception() is None:
-                produced = True
-                yield from future.result()
-            else:
-                yield from group.lost()
+        # The pool broke: what its workers sent and was not read is not read now (a worker
+        # killed while sending leaves half a message that would block the reader for ever).
+        for group in inflight.values():
+            back = received[_key(group)]
+            yield from (_lost(j) for j in group.jobs if j.index in group.needed - back)
         if broken and not produced:
             for group in remaining:
                 yield from group.lost()
@@ -510,11 +535,11 @@ def _pool_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int
 
 def _ray_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int | None,
                  address: str) -> Iterator[RoomResult]:
-    """The rooms of ``groups`` furnished by Ray actors, a group at a time each, each actor's
-    in the order it made them (see
-    ``_pool_results``). ``address``: 'local' starts a Ray of ``workers`` CPUs on this machine
-    for the batch (and stops it after); anything else is given to ``ray.init`` (a cluster's
-    address, or 'auto'). A driver already connected to Ray uses that connection."""
+    """The rooms of ``groups`` furnished by Ray actors, a group at a time each, each room as
+    it ends, each actor's in the order it made them (see ``_pool_results``). ``address``:
+    'local' starts a Ray of ``workers`` CPUs on this machine for the batch (and stops it
+    after); anything else is given to ``ray.init`` (a cluster's address, or 'auto'). A
+    driver already connected to Ray uses that connection."""
     try:
         import ray
     except ImportError:
@@ -536,6 +561,7 @@ def _ray_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int | None,
         actor_class = ray.remote(num_cpus=1)(RayWorker)
         actors = [actor_class.remote(spec) for _ in range(min(n, len(groups)))]
         todo = iter(groups)
+        # Each actor's groups in the order given to it, each a stream of its rooms.
         queued: list[deque] = [deque() for _ in actors]
 
         def feed(k: int) -> None:
@@ -547,16 +573,21 @@ def _ray_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int | None,
             for k in range(len(actors)):
                 feed(k)
         while any(queued):
-            heads = {q[0]: k for k, q in enumerate(queued) if q}
-            ready, _ = ray.wait(list(heads), num_returns=1)
-            k = heads[ready[0]]
-            queued[k].popleft()
-            feed(k)
+            heads = [k for k, q in enumerate(queued) if q]
+            ready, _ = ray.wait([queued[k][0] for k in heads], num_returns=1)
+            k = next(k for k in heads if queued[k][0] is ready[0])
             try:
-                yield from ray.get(ready[0])
+                try:
+                    room = next(queued[k][0])
+                except StopIteration:       # the group has ended
+                    queued[k].popleft()
+                    feed(k)
+                    continue
+                result = ray.get(room)
             except ray.exceptions.RayError as e:
                 raise BatchError(f'a Ray worker failed ({sentence(e, 200)}); run the same '
                                  f'command again to resume') from None
+            yield result
     finally:
         for a in actors:
             ray.kill(a)

@@ -22,13 +22,14 @@ order) always gives the same results.
 
 Greenlets rather than threads: switching costs about a microsecond, there is no race (a
 room runs only when the coordinator switches to it), and torch's per-thread state (the
-coordinator holds inference mode for the whole group) is shared by the rooms.
+coordinator holds inference mode while rooms run) is shared by the rooms. ``each`` gives each
+room's result as the room ends, so that a batch writes it at once; ``run`` gives them all.
 """
 from __future__ import annotations
 
 from collections import deque
 from dataclasses import dataclass
-from typing import Callable, Collection, Sequence, TypeVar
+from typing import Callable, Collection, Iterator, Sequence, TypeVar
 
 from greenlet import getcurrent, greenlet
 import torch
@@ -131,28 +132,30 @@ def _next_call(waiting: dict[int, Request]) -> list[int]:
     return max(_by_call(waiting), key=len)
 
 
-def run(calls: Sequence[Callable[[], T]], width: int | None = None,
-        needed: Collection[int] | None = None) -> list[T | Exception | None]:
-    """Each call's result, or the exception it raised, the calls made in lockstep (see the
-    module docstring): at most ``width`` of them at a time (all by default), the next one
-    started, in order, when one ends. With ``needed`` (indices), the run ends as soon as
-    those calls have ended; the others that had not are abandoned (None). What happened up to
-    then is what happens in a run of all the calls, so a needed call's result does not
-    depend on ``needed``. Anything but an ``Exception`` (Ctrl-C) ends the run and is
-    raised."""
+def each(calls: Sequence[Callable[[], T]], width: int | None = None,
+         needed: Collection[int] | None = None) -> Iterator[tuple[int, T | Exception]]:
+    """``(k, result)`` as each call ``k`` ends, its result or the exception it raised, the
+    calls made in lockstep (see the module docstring): at most ``width`` of them at a time
+    (all by default), the next one started, in order, when one ends. With ``needed``
+    (indices), the run ends as soon as those calls have ended; the others that had not are
+    abandoned. What happened up to then is what happens in a run of all the calls, so a
+    needed call's result does not depend on ``needed``, nor on what the consumer does
+    between two results. Anything but an ``Exception`` (Ctrl-C) ends the run and is raised;
+    so does closing the iterator, which abandons the calls under way."""
     rooms = [Room(c) for c in calls]
-    results: list = [None] * len(rooms)
     todo = set(range(len(rooms)) if needed is None else needed)
     width = len(rooms) if width is None else width
     # (room, what to switch into it with), in order: nothing to start a room, else its answer
     queue = deque((k, ()) for k in range(min(width, len(rooms))))
     started = len(queue)
     waiting: dict[int, Request] = {}
-    # The rooms enter and leave inference mode inside the group's: a room that left it after
-    # the group had would put back the mode it found, and leave the thread in it.
-    with torch.inference_mode():
-        try:
-            while todo:
+    try:
+        while todo:
+            ended = []
+            # The rooms run only inside inference mode, and enter and leave their own inside
+            # it: a room that left its own after the group had would put back the mode it
+            # found, and leave the thread in it. The consumer runs outside it.
+            with torch.inference_mode():
                 while queue:
                     k, answer = queue.popleft()
                     try:
@@ -162,18 +165,30 @@ def run(calls: Sequence[Callable[[], T]], width: int | None = None,
                     if not rooms[k].dead:
                         waiting[k] = out
                         continue
-                    results[k] = out
+                    ended.append((k, out))
                     todo.discard(k)
                     if started < len(rooms):
                         queue.append((started, ()))
                         started += 1
-                if not waiting or not todo:
-                    break
-                ks = _next_call(waiting)
-                for k, answer in zip(ks, serve([waiting.pop(k) for k in ks]), strict=True):
-                    queue.append((k, (answer,)))
-        finally:
-            for room in rooms:      # abandoned (or left by Ctrl-C): unwound now, in the group
+                if waiting and todo:
+                    ks = _next_call(waiting)
+                    for k, answer in zip(ks, serve([waiting.pop(k) for k in ks]), strict=True):
+                        queue.append((k, (answer,)))
+            yield from ended
+            if not waiting and not queue:
+                break
+    finally:
+        with torch.inference_mode():
+            for room in rooms:      # abandoned (or left by Ctrl-C): unwound now, in the mode
                 if room and not room.dead:
                     room.throw()
+
+
+def run(calls: Sequence[Callable[[], T]], width: int | None = None,
+        needed: Collection[int] | None = None) -> list[T | Exception | None]:
+    """Each call's result, or the exception it raised (None for a call abandoned after the
+    ``needed`` ones ended), the calls made in lockstep as by ``each``."""
+    results: list = [None] * len(calls)
+    for k, out in each(calls, width, needed):
+        results[k] = out
     return results

@@ -26,3 +26,9 @@ def process_executor(workers: int, initializer: Callable | None = None,
     """``process_pool`` as an executor: a worker that dies (killed, out of memory) breaks
     it with ``BrokenProcessPool`` where a ``Pool`` would wait for ever for its task."""
     return ProcessPoolExecutor(workers, _context(), initializer, tuple(initargs))
+
+
+def process_queue() -> mp.Queue:
+    """A queue that the processes of ``process_executor`` can be given at their start
+    (``initargs``), to send results before their task ends."""
+    return _context().Queue()

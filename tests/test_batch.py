@@ -318,3 +318,38 @@ def test_a_killed_worker_costs_its_rooms_not_the_batch(tiny_weights, tmp_path):
     assert again.returncode == 0, again.stderr
     assert f'{len(lost)} furnished and 0 failed' in again.stdout
     assert all(r['status'] == 'ok' for r in rows(out))
+
+
+def test_rooms_come_back_one_by_one_and_ctrl_c_mid_group_keeps_them(tiny_weights, tmp_path):
+    """A worker sends each room of a lockstep group as it ends: the manifest grows room by
+    room, and a run interrupted inside a group keeps the rooms already written; the next run
+    furnishes the others, the same rooms as a run never interrupted."""
+    import signal
+    import subprocess
+    import sys
+    out, whole = tmp_path / 'out', tmp_path / 'whole'
+    args = batch(tiny_weights, '-n', 24, '--workers', 1, '--lockstep', 3)   # one group of 24
+    cmd = [sys.executable, '-m', 'scene_synth_ros.cli', *map(str, args)]
+    proc = subprocess.Popen([*cmd, '--out', str(out)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 120
+        while not ((out / 'manifest.jsonl').is_file() and len(rows(out)) >= 2):
+            assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
+            time.sleep(0.01)
+        assert len(rows(out)) < 24 and proc.poll() is None      # the group is under way
+        proc.send_signal(signal.SIGINT)
+        proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+    assert proc.returncode == 130
+    kept = rows(out)
+    assert 2 <= len(kept) < 24 and all(r['status'] == 'ok' for r in kept)
+    assert all((out / 'scenes' / f'{r["room"]}.json').is_file() for r in kept)
+    again = subprocess.run([*cmd, '--out', str(out)], capture_output=True, text=True,
+                           timeout=180)
+    assert again.returncode == 0, again.stderr
+    assert f'{len(kept)} of 24 rooms already there' in again.stdout
+    subprocess.run([*cmd, '--out', str(whole)], check=True, capture_output=True, timeout=180)
+    assert scenes(out) == scenes(whole) and len(scenes(out)) == 24
+    assert [stable(r) for r in rows(out)] == [stable(r) for r in rows(whole)]

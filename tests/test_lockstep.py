@@ -139,6 +139,33 @@ def test_a_run_cut_short_at_the_rooms_needed_gives_them_as_a_whole_run_does(synt
                for a, b in zip(whole, lockstep.run(calls), strict=True)) >= 5
 
 
+def test_each_gives_a_room_as_it_ends_with_the_consumer_outside_inference_mode(synth):
+    rooms = [empty_room('bathroom', HELDOUT_SEED, i) for i in range(5)]
+    started: list[int] = []
+
+    def furnish(i):
+        started.append(i)
+        return synth.generate(rooms[i], seed=i)
+
+    calls = [lambda i=i: furnish(i) for i in range(5)]
+    whole = lockstep.run(calls, width=2)
+    order, seen = [], []
+    started.clear()
+    for k, result in lockstep.each(calls, width=2):
+        # The first room comes back while the group is still under way (two at a time: the
+        # last room has not started), and the consumer runs as the caller does.
+        seen.append(len(started))
+        order.append(k)
+        assert not torch.is_inference_mode_enabled()
+        assert objects(result.scene) == objects(whole[k].scene)
+    assert sorted(order) == list(range(5)) and seen[0] < 5
+    # Closing the iterator mid-group abandons the rooms under way, unwound in the group.
+    rooms_left = lockstep.each(calls, width=2)
+    next(rooms_left)
+    rooms_left.close()
+    assert not torch.is_inference_mode_enabled() and torch.is_grad_enabled()
+
+
 def test_images_are_drawn_channels_last_as_the_networks_take_them(synth):
     # On the CPU the renderer draws into channels-last memory (no copy before the networks),
     # the very pixels of a channels-first image; a batch of them stays channels-last when
