@@ -24,9 +24,7 @@ DOOR_ZONE_SIDE_MARGIN = 0.10    # ...and this much wider than the door on each s
 
 def shrunk_footprint(obj: PlacedObject, by: float) -> Polygon:
     """The footprint with every side moved inwards by ``by`` metres (never inverted)."""
-    w = max(obj.width - 2 * by, 1e-4)
-    d = max(obj.depth - 2 * by, 1e-4)
-    return Polygon(box_corners(obj.position[0], obj.position[1], obj.yaw, w, d))
+    return obj.footprint(by)
 
 
 def door_zone(room: Room, door: Opening) -> Polygon:

@@ -437,8 +437,10 @@ class TopDownRenderer:
     def num_channels(self, room_type: str) -> int:
         return num_channels(room_type)
 
-    def static_layers(self, room: Room, frame: Frame) -> np.ndarray:
-        """Cached (4, N, N) room, wall, door, window masks. Do not modify the result."""
+    def static_layers(self, room: Room, frame: Frame, keep: bool = True) -> np.ndarray:
+        """Cached (4, N, N) room, wall, door, window masks. Do not modify the result.
+        ``keep=False``: a frame seen once (a crop's), not kept, so that it does not push the
+        frames that are seen again (each room's own) out of the cache."""
         rkey = _room_key(room)
         key = (rkey, frame)
         layers = self._static.get(key)
@@ -448,15 +450,17 @@ class TopDownRenderer:
                 openings = _opening_boxes(room)
                 self._rooms.put(rkey, openings)
             layers = static_layers(room, frame, openings)
-            self._static.put(key, layers)
+            if keep:
+                self._static.put(key, layers)
         return layers
 
     def render(self, scene: Scene, frame: Frame | None = None,
-               out: np.ndarray | None = None) -> np.ndarray:
+               out: np.ndarray | None = None, keep: bool = True) -> np.ndarray:
         """The image of ``scene`` in ``frame`` (default: the room's frame, the global view
         the category and location modules see), drawn into ``out`` when given (a float32
         array of the image's shape, overwritten: the synthesizer reuses one per room for
-        its crops instead of allocating and stacking fresh ones)."""
+        its crops instead of allocating and stacking fresh ones). ``keep``: whether the
+        frame's architecture layers are cached (``static_layers``)."""
         room = scene.room
         if frame is None:
             frame = Frame.for_room(room, self.resolution)
@@ -479,7 +483,7 @@ class TopDownRenderer:
                              f'got {out.dtype} {out.shape}')
         else:
             out.fill(0.0)
-        static = self.static_layers(room, frame)
+        static = self.static_layers(room, frame, keep)
         out[ROOM:WALL + 1] = static[0:2]
         out[DOOR:WINDOW + 1] = static[2:4]
 

@@ -86,6 +86,10 @@ class Robot:
 def reach_zone(obj: PlacedObject, robot: Robot) -> Polygon:
     """Where the robot's centre may be to use ``obj``: within its radius plus reach of the
     front side and straight before it (``OPERATED_FRONT``), or of the footprint (others)."""
+    return obj.remembered(('reach zone', robot), lambda: _reach_zone(obj, robot))
+
+
+def _reach_zone(obj: PlacedObject, robot: Robot) -> Polygon:
     r = robot.radius + robot.reach - INSET
     if obj.category not in OPERATED_FRONT:
         return obj.footprint().buffer(r)

@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 import math
-from typing import Any, Iterable, Iterator
+from typing import Any, Callable, Hashable, Iterable, Iterator
 
 import numpy as np
 import shapely
@@ -155,16 +155,25 @@ class Room:
 
     def wall_of(self, opening: Opening, tol: float = 0.01) -> Wall | None:
         """The wall an opening lies on (within ``tol`` metres, whole width on the wall)."""
-        known = self._walls_of
-        if (opening, tol) not in known:
-            known[opening, tol] = self._find_wall(opening, tol)
-        return known[opening, tol]
+        return self.remembered(('wall of', opening, tol), lambda: self._find_wall(opening, tol))
+
+    def remembered(self, what: Hashable, make: Callable[[], Any]) -> Any:
+        """``make()``, something of the room (it never changes) remembered under ``what``:
+        the design rules ask for the walls of the doors and windows, the floor grown by a
+        tolerance and the like at every candidate placement. Shared: never modify it."""
+        known = self._remembered
+        if what not in known:
+            known[what] = make()
+        return known[what]
 
     @cached_property
-    def _walls_of(self) -> dict[tuple[Opening, float], Wall | None]:
-        """``wall_of``'s answers, remembered: the design rules ask it for every door and
-        window at every candidate placement."""
+    def _remembered(self) -> dict:
         return {}
+
+    def __getstate__(self) -> dict[str, Any]:
+        # Pickles (worker processes) carry the room, not what was remembered of it (prepared
+        # geometries cannot be pickled).
+        return {k: v for k, v in self.__dict__.items() if k != '_remembered'}
 
     def _find_wall(self, opening: Opening, tol: float) -> Wall | None:
         best = None
@@ -256,8 +265,34 @@ class PlacedObject(Sized):
         return box_corners(self.position[0], self.position[1], self.yaw, self.width,
                            self.depth)
 
-    def footprint(self) -> Polygon:
-        return Polygon(self.corners())
+    def footprint(self, inset: float = 0.0) -> Polygon:
+        """The footprint, with every side moved inwards by ``inset`` metres (never
+        inverted)."""
+        return self.remembered(('footprint', inset), lambda: self._footprint(inset))
+
+    def _footprint(self, inset: float) -> Polygon:
+        if not inset:
+            return Polygon(self.corners())
+        w, d = max(self.width - 2 * inset, 1e-4), max(self.depth - 2 * inset, 1e-4)
+        return Polygon(box_corners(self.position[0], self.position[1], self.yaw, w, d))
+
+    def remembered(self, what: Hashable, make: Callable[[], Any]) -> Any:
+        """``make()``, a shape of the object that depends only on its category, place and
+        size, remembered under ``what`` while those stay the same: insertion asks for the shapes
+        of the room's objects (footprints, clear strips, reach zones) at every candidate
+        placement. The shapes are shared: never modify one."""
+        place = (self.category, *self.position, self.yaw, *self.size)
+        known = self.__dict__.get('_remembered')
+        if known is None or known[0] != place:
+            known = self.__dict__['_remembered'] = (place, {})
+        shapes = known[1]
+        if what not in shapes:
+            shapes[what] = make()
+        return shapes[what]
+
+    def __getstate__(self) -> dict[str, Any]:
+        # Pickles (worker processes) carry the object, not the shapes remembered.
+        return {k: v for k, v in self.__dict__.items() if k != '_remembered'}
 
     def to_dict(self) -> dict[str, Any]:
         d = {'id': self.id, 'category': self.category, 'model_id': self.model_id,

@@ -343,7 +343,9 @@ class Synthesizer:
 
     def _renderer(self, resolution: int) -> TopDownRenderer:
         if resolution not in self._renderers:
-            self._renderers[resolution] = TopDownRenderer(resolution, cache_size=16)
+            # Each room under way keeps its frame's architecture layers (64 KB at 64 px):
+            # room enough for the widest lockstep (``batch.MAX_LOCKSTEP``).
+            self._renderers[resolution] = TopDownRenderer(resolution, cache_size=64)
         return self._renderers[resolution]
 
     def _context(self, room: Room, seed: int, objects=()) -> _Context:
@@ -614,7 +616,10 @@ class Synthesizer:
             ctx.crops = self._image(n, c, len(points))
         batch = ctx.crops[:len(points)]
         for k, (pt, yaw) in enumerate(zip(points, yaws, strict=True)):
-            r.render(scene, Frame.local(ctx.room.room_type, pt, yaw, n), out=batch[k])
+            # A crop's frame is seen once: not cached, so that the rooms' own frames stay
+            # (in lockstep, 16 rooms' crops pushed them out of the cache at every step).
+            r.render(scene, Frame.local(ctx.room.room_type, pt, yaw, n), out=batch[k],
+                     keep=False)
         return torch.from_numpy(batch).to(self.device)
 
     def _orientation(self, ctx: _Context, scene: Scene, c: int, points: np.ndarray

@@ -114,7 +114,12 @@ RULE_ROBOT = Robot(radius=ROBOT_WIDTH / 2, reach=ROBOT_REACH)
 # ---- clear strips ------------------------------------------------------------------------
 def _strip(obj: PlacedObject, which: str, depth: float) -> tuple[Polygon, np.ndarray, float]:
     """The strip ``depth`` deep outside one side, the side's start and its unit direction
-    folded into (start, direction), and the side's length."""
+    folded into (start, direction), and the side's length (shared: not to be modified)."""
+    return obj.remembered(('strip', which, depth), lambda: _make_strip(obj, which, depth))
+
+
+def _make_strip(obj: PlacedObject, which: str, depth: float
+                ) -> tuple[Polygon, np.ndarray, float]:
     a, b = (np.asarray(p) for p in side(obj, which).coords)
     length = float(np.linalg.norm(b - a))
     along = (b - a) / length
@@ -129,8 +134,12 @@ class _Obstacles:
 
     def __init__(self, scene: Scene):
         self.objects = scene.first_tier
-        self.floor = scene.room.polygon.buffer(TOLERANCE, join_style='mitre')
-        self._floor = prep(self.floor)
+        room = scene.room
+        self.floor = room.remembered(
+            ('floor grown', TOLERANCE),
+            lambda: room.polygon.buffer(TOLERANCE, join_style='mitre'))
+        self._floor = room.remembered(('floor grown, prepared', TOLERANCE),
+                                      lambda: prep(self.floor))
 
     @cached_property
     def _shrunk(self) -> list[Polygon]:

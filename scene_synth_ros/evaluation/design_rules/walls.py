@@ -180,6 +180,10 @@ def back_gaps(objects: Sequence[PlacedObject], runs: tuple[np.ndarray, np.ndarra
 
 def window_zone(room: Room, window: Opening) -> tuple[Wall, Polygon] | None:
     """The window's wall and the strip of floor in front of it (None off every wall)."""
+    return room.remembered(('window zone', window), lambda: _window_zone(room, window))
+
+
+def _window_zone(room: Room, window: Opening) -> tuple[Wall, Polygon] | None:
     wall = room.wall_of(window)
     if wall is None:
         return None
