@@ -7,8 +7,8 @@ directory exactly as ``scene-synth generate -n N --out DIR --workers W --lockste
 start-up included; the runs are interleaved (every R for one worker count, then the next
 count). ``--location-batch`` sets ``SynthConfig.location_batch`` (candidate placements decoded
 together; default that of SynthConfig). In lockstep a room's seconds are its group's wall
-time since the room before it ended (the mean is the group's time shared equally; the
-median, the pace once the group is under way). With ``--soak N``, a batch of N rooms on
+time since the room before it ended, so only their mean is printed: the group's time shared
+equally among its rooms (rooms often end in the same round, a few microseconds apart). With ``--soak N``, a batch of N rooms on
 ``--soak-workers`` workers, and each worker's resident memory after its 100th room and after
 its last (the issue's target: no growth beyond 50 MB after the first 100 rooms);
 ``--soak-report DIR`` says the same of a soak directory kept with ``--keep``, also of one
@@ -71,8 +71,9 @@ def throughput(room_type: str, n: int, workers: int, lockstep: int, weights: str
     print(f'{workers} worker(s), lockstep {lockstep}: {n} {room_type}s in {s.seconds:.1f} s = '
           f'{s.rooms_per_second:.2f} rooms/s (start-up included); {len(ok)} ok, '
           f'{s.objects_per_room:.2f} objects a room, {s.valid} valid, '
-          f'{s.robot_kept} robot promise kept; per room in a worker: median '
-          f'{secs[len(secs) // 2]:.3f} s, mean {sum(secs) / len(secs):.3f} s; peak resident '
+          f'{s.robot_kept} robot promise kept; per room in a worker: '
+          + (f'median {secs[len(secs) // 2]:.3f} s, ' if lockstep == 1 else '')
+          + f'mean {sum(secs) / len(secs):.3f} s; peak resident '
           f'memory per worker: {", ".join(f"{v:.0f}" for v in s.peak_mb.values())} MB',
           flush=True)
     print(f'  after: {_load()}', flush=True)

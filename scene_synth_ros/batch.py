@@ -611,8 +611,8 @@ class BatchConfig:
     png: bool = False
     exports: tuple[str, ...] = ()
     ray: str | None = None          # None: worker processes; 'local' or an address: Ray
-    # Rooms furnished together (``lockstep``; 1: one at a time): 16 made 6 % more rooms a
-    # second than 8 on two workers, at 390 MB a worker (``benchmarks/bench_batch.py``).
+    # Rooms furnished together (``lockstep``; 1: one at a time): 16 made 3 % more rooms a
+    # second than 8 on two workers, at 395 MB a worker (``benchmarks/bench_batch.py``).
     lockstep: int = 16
     progress: bool = True           # a progress bar on stderr
 
