@@ -102,7 +102,9 @@ def under_supported(scene: Scene, minimum: float = MIN_SUPPORT) -> list[str]:
 def free_space(scene: Scene, robot_width: float = ROBOT_WIDTH):
     """Where the centre of a round robot of ``robot_width`` can be."""
     r = robot_width / 2
-    free = scene.room.polygon.buffer(-r, join_style='mitre')
+    room = scene.room
+    free = room.remembered(('floor shrunk', r),
+                           lambda: room.polygon.buffer(-r, join_style='mitre'))
     obstacles = [o.footprint() for o in scene.first_tier]
     if obstacles:
         free = free.difference(shapely.union_all(obstacles).buffer(r))
@@ -115,7 +117,8 @@ def door_parts(room: Room, free, robot_width: float = ROBOT_WIDTH):
     parts = [p for p in getattr(free, 'geoms', [free]) if not p.is_empty]
     owners = []
     for door in room.doors:
-        p = door_entry_point(room, door, robot_width)
+        p = room.remembered(('door entry', door, robot_width),
+                            lambda door=door: door_entry_point(room, door, robot_width))
         owners.append(next((i for i, part in enumerate(parts) if part.distance(p) < 1e-6),
                            None))
     return parts, owners

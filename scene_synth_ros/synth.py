@@ -86,6 +86,11 @@ INSERTION_RULES = {'windows_clear': walls.window_verdicts,
                    'bidet_by_toilet': groups.bidet_verdicts,
                    'coffee_table_has_seating': groups.seating_verdicts}
 
+# Rules whose verdicts a new piece changes only where it enters a case's clear strip or zone:
+# insertion asks for those cases alone (the verdict functions' ``new``), the same answer for
+# less work.
+INCREMENTAL_RULES = frozenset({'windows_clear', 'storage_clearance', 'fixture_clearance'})
+
 # The only categories whose insertion can change a rule's verdicts (a rule not named here can
 # be changed by any piece): a chair's place at a table depends on chairs and tables alone,
 # and so on. Insertion skips the other rules, which is the same answer for less work.
@@ -736,7 +741,9 @@ class Synthesizer:
             key = (name, id(scene), len(scene.objects))
             if key not in ctx.rules:
                 ctx.rules[key] = INSERTION_RULES[name](scene)
-            before, now = ctx.rules[key], INSERTION_RULES[name](after)
+            verdicts = INSERTION_RULES[name]
+            before = ctx.rules[key]
+            now = verdicts(after, new=obj) if name in INCREMENTAL_RULES else verdicts(after)
             if not all(ok or before.get(case) is False for case, ok in now.items()):
                 return False
         if ctx.room.doors:

@@ -91,6 +91,31 @@ def test_insertion_keeps_windows_and_storage_fronts_clear(synth, tiny_weights):
         Synthesizer(tiny_weights, SynthConfig(insertion_rules=('chairs_square',)))
 
 
+def test_insertion_asks_only_the_cases_a_new_piece_can_change(tiny_weights):
+    # For the rules insertion asks about the cases a new piece can change alone (its own,
+    # and those whose clear strip or window zone it enters), every other case keeps the
+    # verdict it had before the piece, and those asked get the full answer: rooms furnished
+    # without the rules kept (which break them often) and corpus rooms, with each of their
+    # first-tier pieces added last.
+    from scene_synth_ros.synth import INCREMENTAL_RULES, INSERTION_RULES
+    loose = Synthesizer(tiny_weights, SynthConfig(insertion_rules=()))
+    asked = changed = 0
+    for rt, i in itertools.product(('bedroom', 'bathroom'), range(10)):
+        rooms = (generate_room(rt, 1, i), loose.generate(empty_room(rt, 1, i), seed=i).scene)
+        for scene, new in ((s, o) for s in rooms for o in s.first_tier):
+            rest = [o for o in scene.objects if o is not new]
+            before, after = Scene(scene.room, rest), Scene(scene.room, rest + [new])
+            for name in INCREMENTAL_RULES:
+                verdicts = INSERTION_RULES[name]
+                full, then = verdicts(after), verdicts(before)
+                part = verdicts(after, new=new)
+                assert part == {case: full[case] for case in part}, (rt, i, name, new.id)
+                assert all(then[case] == ok for case, ok in full.items() if case not in part)
+                asked += len(part)
+                changed += sum(case in then and then[case] != ok for case, ok in full.items())
+    assert asked > 0 and changed > 0        # pieces that broke another's rule were added
+
+
 def test_insertion_keeps_group_pieces_by_their_partners(synth, tiny_weights):
     loose = Synthesizer(tiny_weights, SynthConfig(insertion_rules=()))
     room = Room('bedroom', [(0, 0), (5, 0), (5, 4), (0, 4)], 2.6,

@@ -200,11 +200,21 @@ def _cases(scene: Scene, categories) -> tuple[list[PlacedObject], _Obstacles | N
     return cases, (_Obstacles(scene) if cases else None)
 
 
-def storage_verdicts(scene: Scene) -> dict[int, bool]:
+def _entered_by(new: PlacedObject | None, obj: PlacedObject, depth: float) -> bool:
+    """Whether ``new`` is ``obj`` or blocks some of the strip ``depth`` deep before its front:
+    a piece added to a room changes no other piece's clear front (``new`` None: every piece
+    counts)."""
+    return (new is None or obj is new
+            or _strip(obj, 'front', depth)[0].intersects(new.footprint(TOLERANCE)))
+
+
+def storage_verdicts(scene: Scene, new: PlacedObject | None = None) -> dict[int, bool]:
     """Whether each first-tier piece of storage (by its index in ``scene.first_tier``) keeps
-    ``storage_clearance``."""
+    ``storage_clearance``. With ``new`` (a first-tier piece of ``scene`` just added), only the
+    pieces whose verdict it can have changed: itself, and those whose front it blocks."""
     first = scene.first_tier
-    cases = [k for k, o in enumerate(first) if o.category in STORAGE]
+    cases = [k for k, o in enumerate(first)
+             if o.category in STORAGE and _entered_by(new, o, STORAGE_CLEARANCE)]
     if not cases:
         return {}
     room = _Obstacles(scene)
@@ -225,10 +235,12 @@ def _fixture_clear(room: _Obstacles, obj: PlacedObject) -> bool:
     return _whole(found)
 
 
-def fixture_verdicts(scene: Scene) -> dict[str, bool]:
-    """Whether each fixture (by id) keeps ``fixture_clearance``."""
+def fixture_verdicts(scene: Scene, new: PlacedObject | None = None) -> dict[str, bool]:
+    """Whether each fixture (by id) keeps ``fixture_clearance``; with ``new``, only those
+    whose verdict it can have changed (as ``storage_verdicts``)."""
     cases, room = _cases(scene, FIXTURE_CLEARANCE)
-    return {o.id: _fixture_clear(room, o) for o in cases}
+    return {o.id: _fixture_clear(room, o) for o in cases
+            if _entered_by(new, o, FIXTURE_CLEARANCE[o.category])}
 
 
 def fixture_clearance(scene: Scene) -> Outcome:

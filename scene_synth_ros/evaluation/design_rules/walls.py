@@ -284,17 +284,19 @@ def covered_width(window: Opening, wall: Wall, zone: Polygon,
     return union_length([along_wall(wall, p) for p in parts[shapely.area(parts) > 0]])
 
 
-def window_verdicts(scene: Scene) -> dict[int, bool]:
+def window_verdicts(scene: Scene, new: PlacedObject | None = None) -> dict[int, bool]:
     """Whether each window on a wall (by its index in ``room.windows``) keeps
-    ``windows_clear``."""
+    ``windows_clear``. With ``new`` (a first-tier piece of ``scene`` just added), only the
+    windows whose verdict it can have changed: those whose zone it enters."""
     first = scene.first_tier
+    zones = [(k, w, z) for k, w in enumerate(scene.room.windows)
+             if (z := window_zone(scene.room, w)) is not None
+             and (new is None or z[1].intersects(new.footprint()))]
+    if not zones:
+        return {}
     fps = shapely.polygons(corner_array(first)) if first else np.empty(0, dtype=object)
-    out = {}
-    for k, w in enumerate(scene.room.windows):
-        z = window_zone(scene.room, w)
-        if z is not None:
-            out[k] = covered_width(w, *z, first, fps) <= WINDOW_SHARE * w.width
-    return out
+    return {k: covered_width(w, *z, first, fps) <= WINDOW_SHARE * w.width
+            for k, w, z in zones}
 
 
 def measure_windows_clear(scene: Scene) -> tuple[int, int]:
