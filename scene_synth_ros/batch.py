@@ -435,22 +435,26 @@ class Worker:
 
 _WORKER: Worker | None = None
 _RESULTS = None         # the queue through which a pool worker sends each room as it ends
+_STOP = None            # set by the driver when it stops early: the groups under way end
 
 
-def _start_pool_worker(spec: WorkerSpec, results) -> None:
-    global _WORKER, _RESULTS
+def _start_pool_worker(spec: WorkerSpec, results, stop) -> None:
+    global _WORKER, _RESULTS, _STOP
     # Ctrl-C goes to the whole process group; the driver alone handles it (it stops the pool).
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     # The driver reads every room before it stops the pool, except when it stops early; then
     # what was not read must not keep the worker from exiting.
     results.cancel_join_thread()
-    _WORKER, _RESULTS = Worker(spec), results
+    _WORKER, _RESULTS, _STOP = Worker(spec), results, stop
 
 
 def _pool_furnish(group: RoomGroup) -> int:
-    """Furnishes ``group``, sending each room to the driver as it ends; how many it sent."""
+    """Furnishes ``group``, sending each room to the driver as it ends, until the group ends
+    or the driver stops; how many rooms it sent."""
     sent = 0
     for result in _WORKER.furnish_group(group):
+        if _STOP.is_set():
+            break               # the rooms under way are abandoned (``lockstep.each``)
         _RESULTS.put((_key(group), result))
         sent += 1
     return sent
@@ -489,11 +493,11 @@ def _pool_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int
     from concurrent.futures.process import BrokenProcessPool
     from queue import Empty
 
-    from .parallel import process_executor, process_queue
+    from .parallel import process_event, process_executor, process_queue
     remaining = deque(groups)
     while remaining:
-        results = process_queue()
-        pool = process_executor(workers, _start_pool_worker, (spec, results))
+        results, stop = process_queue(), process_event()
+        pool = process_executor(workers, _start_pool_worker, (spec, results, stop))
         inflight: dict = {}             # future -> group
         received: dict[int, set[int]] = {}  # group key -> indices of its rooms that came back
         produced = broken = False
@@ -520,7 +524,9 @@ def _pool_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int
                     if len(received[_key(inflight[future])]) == sent:
                         del inflight[future]
         finally:
-            # also when the driver stops early (an error, Ctrl-C): queued rooms are dropped
+            # Also when the driver stops early (an error, Ctrl-C): the groups under way end
+            # at their next room, the queued ones are dropped.
+            stop.set()
             pool.shutdown(wait=True, cancel_futures=True)
         # The pool broke: what its workers sent and was not read is not read now (a worker
         # killed while sending leaves half a message that would block the reader for ever).

@@ -32,3 +32,9 @@ def process_queue() -> mp.Queue:
     """A queue that the processes of ``process_executor`` can be given at their start
     (``initargs``), to send results before their task ends."""
     return _context().Queue()
+
+
+def process_event():
+    """An event that the processes of ``process_executor`` can be given at their start, to
+    be told to stop early."""
+    return _context().Event()
