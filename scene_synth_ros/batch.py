@@ -79,6 +79,7 @@ from dataclasses import asdict, dataclass, field, replace
 import json
 import os
 from pathlib import Path
+import pickle
 import signal
 import socket
 import sys
@@ -455,7 +456,9 @@ def _pool_furnish(group: RoomGroup) -> int:
     for result in _WORKER.furnish_group(group):
         if _STOP.is_set():
             break               # the rooms under way are abandoned (``lockstep.each``)
-        _RESULTS.put((_key(group), result))
+        # Pickled here, not by the queue's thread, which would drop a room it cannot pickle
+        # and leave the driver waiting for it: here that fails the task, which says why.
+        _RESULTS.put(pickle.dumps((_key(group), result), pickle.HIGHEST_PROTOCOL))
         sent += 1
     return sent
 
@@ -508,7 +511,7 @@ def _pool_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int
                     received[_key(group)] = set()
                     inflight[pool.submit(_pool_furnish, group)] = group
                 try:
-                    key, result = results.get(timeout=POLL_SECONDS)
+                    key, result = pickle.loads(results.get(timeout=POLL_SECONDS))
                 except Empty:
                     pass
                 else:
