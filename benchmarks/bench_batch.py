@@ -8,12 +8,13 @@ start-up included; the runs are interleaved (every R for one worker count, then 
 count). ``--location-batch`` sets ``SynthConfig.location_batch`` (candidate placements decoded
 together; default that of SynthConfig). In lockstep a room's seconds are its group's wall
 time since the room before it ended, so only their mean is printed: the group's time shared
-equally among its rooms (rooms often end in the same round, a few microseconds apart). With ``--soak N``, a batch of N rooms on
-``--soak-workers`` workers, and each worker's resident memory after its 100th room and after
-its last (the issue's target: no growth beyond 50 MB after the first 100 rooms);
-``--soak-report DIR`` says the same of a soak directory kept with ``--keep``, also of one
-stopped before its end. The machine's load average is printed beside the figures: on a
-shared machine they are only as good as the cores were free.
+equally among its rooms (rooms often end in the same round, a few microseconds apart).
+With ``--soak N``, a batch of N rooms on ``--soak-workers`` workers, and each worker's
+resident memory after its 100th room and after its last (the issue's target: no growth
+beyond 50 MB after the first 100 rooms); ``--soak-report DIR`` says the same of a soak
+directory kept with ``--keep``, also of one stopped before its end. The machine's load
+average is printed beside the figures: on a shared machine they are only as good as the
+cores were free.
 
     .venv/bin/python benchmarks/bench_batch.py [-n 200] [--workers 1 2] [--lockstep 1 8 32]
         [--room-type bedroom] [--location-batch N] [--soak 10000] [--soak-workers 2]
