@@ -12,7 +12,8 @@ checks ``fits`` calls in ``scene_synth_ros.synth`` (in this process only). Table
    per category how often a drawn category fails to insert (``_insert_category`` returns
    None): for an empty location mask, or after every location try failed, where a try fails
    for no supporting parent under the point or because ``fits`` rejected every model (by the
-   last check ``fits`` ran: floor (left the floor), collide, door, path, support, sibling);
+   last check ``fits`` ran: floor (left the floor), collide, door, rules (a design rule kept
+   at insertion), path (the robot promise), support, sibling);
 4. rooms ended by STOP: objects then against the shell's corpus room, and p(STOP) at the
    draw as ``_next_category`` computes it (with the mask of that draw, the step's first mask,
    no mask), and p(STOP) of the shell's corpus room cut to as many objects (training order);
@@ -47,9 +48,11 @@ from scene_synth_ros.networks.category import category_probabilities  # noqa: E4
 from scene_synth_ros.networks.examples import insertion_order  # noqa: E402
 from scene_synth_ros.scene import Scene  # noqa: E402
 
-REASONS = ('floor', 'collide', 'door', 'path', 'support', 'sibling')
-CHECKS = {'overlaps_any': 'collide', 'enters_zone': 'door', 'doors_connected': 'path',
-          'support_fraction': 'support'}
+REASONS = ('floor', 'collide', 'door', 'rules', 'path', 'support', 'sibling')
+# The checks ``fits`` makes, by the name it calls them under in ``scene_synth_ros.synth``
+# (the design rules kept at insertion are wrapped one by one: 'rules'; the robot promise,
+# ``robot.keeps``: 'path').
+CHECKS = {'overlaps_any': 'collide', 'enters_zone': 'door', 'support_fraction': 'support'}
 
 
 class Probe:
@@ -64,6 +67,11 @@ class Probe:
             setattr(synth, name, getattr(self, name.lstrip('_')))
         for fn, label in CHECKS.items():
             setattr(synth_module, fn, self._check(getattr(synth_module, fn), label))
+        rules = synth_module.INSERTION_RULES
+        for name in rules:
+            rules[name] = self._check(rules[name], 'rules')
+        robot = synth_module.robot
+        robot.keeps = self._check(robot.keeps, 'path')
         location = synth_module.location_distribution
 
         def location_distribution(*a, **k):
@@ -81,9 +89,9 @@ class Probe:
             return fn(*a, **k)
         return wrapped
 
-    def insert_one(self, ctx, scene, allow_stop=True):
+    def insert_one(self, ctx, scene, allow_stop=True, only=None):
         self.step = {'n': len(scene.objects), 'draws': 0}
-        obj, why = self.orig['_insert_one'](ctx, scene, allow_stop)
+        obj, why = self.orig['_insert_one'](ctx, scene, allow_stop, only)
         self.step['outcome'] = why
         self.steps.append(self.step)
         return obj, why
