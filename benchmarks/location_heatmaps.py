@@ -7,7 +7,8 @@ there: the share of its distribution that falls where the design rule wants the 
 In held-out corpus rooms (seed ``corpus.HELDOUT_SEED``) with an office chair seated at a desk
 (offices) or a stand at the head of a bed (bedrooms), that piece is removed and the location
 module is asked, for its category, where it goes in the room that remains. The *share* is the
-mass of the masked, tempered distribution the synthesizer samples from whose pixel centres lie
+mass of the masked, tempered distribution (masked to the free floor only, as with no design
+rule kept at insertion) whose pixel centres lie
 in the rule's zone: in front of the desk, within its width and up to 0.9 m out (a seat's centre
 0.6 m from the desk plus half a seat); beside the bed's first 0.6 m from the headboard, up to
 0.6 m out from its side. The mean share over the rooms is printed (a network that learnt the
@@ -29,7 +30,7 @@ from scene_synth_ros.corpus.generate import generate_corpus  # noqa: E402
 from scene_synth_ros.evaluation.design_rules import groups  # noqa: E402
 from scene_synth_ros.networks.location import location_distribution  # noqa: E402
 from scene_synth_ros.scene import Scene  # noqa: E402
-from scene_synth_ros.synth import Synthesizer  # noqa: E402
+from scene_synth_ros.synth import SynthConfig, Synthesizer  # noqa: E402
 
 CASES = {   # room type: (category removed, partner categories, zone test in the partner's frame)
     'office': ('office chair', ('desk',),
@@ -65,7 +66,7 @@ def share(synth: Synthesizer, scene: Scene, piece, partner, room_type: str):
     with torch.no_grad():
         logits = ctx.bundle.networks['location'](image)[0]
     c = ctx.spec.index(piece.category)
-    p = location_distribution(logits, c, synth._mask(ctx, piece.category, small),
+    p = location_distribution(logits, c, synth._mask(ctx, rest, piece.category, small),
                               synth.config.location_temperature)
     if p is None:
         return None, 0.0
@@ -86,7 +87,9 @@ def main() -> int:
     ap.add_argument('--figure', default=None, help='PNG with four examples per case')
     args = ap.parse_args()
     torch.set_num_threads(1)
-    synth = Synthesizer(args.weights_dir)
+    # No design rule kept at insertion: its mask would confine a group piece to where a
+    # partner could have it, and the share would measure the mask, not the module.
+    synth = Synthesizer(args.weights_dir, SynthConfig(insertion_rules=()))
     examples = []
     print(f'location mass in the rule\'s zone, {args.n} held-out rooms per type')
     for rt in CASES:
