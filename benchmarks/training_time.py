@@ -34,6 +34,10 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument('--run-dir', default='runs/compact')
     args = ap.parse_args()
+    if not Path(args.run_dir).is_dir():
+        print(f'{args.run_dir} is not a directory: give the --run-dir of a training run '
+              f'(scene-synth train --run-dir DIR)', file=sys.stderr)
+        return 2
     total = 0.0
     print(f'{"room type":10s} ' + ' '.join(f'{m:>11s}' for m in MODULES) + f' {"total":>9s}')
     for room in sorted(p for p in Path(args.run_dir).iterdir() if p.is_dir()):
@@ -46,7 +50,8 @@ def main():
         print(f'{room.name:10s} ' + ' '.join(f'{sec[m] / 60:9.1f} m' for m in MODULES)
               + f' {sum(sec.values()) / 60:7.1f} m')
     print(f'all room types: {total / 3600:.2f} h of single-thread training')
+    return 0
 
 
 if __name__ == '__main__':
-    main()
+    sys.exit(main())
