@@ -12,8 +12,10 @@ from __future__ import annotations
 
 import argparse
 from collections import Counter
+import sys
 
 from scene_synth_ros.datasets.training import describe_dir, load_rooms, room_type_specs
+from scene_synth_ros.errors import SceneSynthError
 
 MIN_AREA = 1e-4      # m^2: touching is not overlapping
 
@@ -23,7 +25,11 @@ def main() -> None:
     ap.add_argument('data', help='an imported data set (scene-synth import --out)')
     ap.add_argument('--top', type=int, default=5, help='category pairs shown per room type')
     args = ap.parse_args()
-    for rt, spec in room_type_specs(describe_dir(args.data)).items():
+    try:
+        specs = room_type_specs(describe_dir(args.data))
+    except SceneSynthError as e:
+        sys.exit(f'data_overlaps: {e}')
+    for rt, spec in specs.items():
         rooms = load_rooms(args.data, spec)
         objects = overlapping = 0
         by_category: Counter = Counter()
