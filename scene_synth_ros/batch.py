@@ -304,8 +304,10 @@ class RoomGroup:
     needed: frozenset[int]
     width: int
 
-    def lost(self) -> list[RoomResult]:
-        return [_lost(j) for j in self.jobs if j.index in self.needed]
+    def lost(self, back: frozenset[int] | set[int] = frozenset()) -> list[RoomResult]:
+        """The rows of its needed rooms but those that came ``back`` from its worker, for a
+        worker that died with the group in flight."""
+        return [_lost(j) for j in self.jobs if j.index in self.needed - back]
 
 
 @dataclass
@@ -534,8 +536,7 @@ def _pool_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int
         # The pool broke: what its workers sent and was not read is not read now (a worker
         # killed while sending leaves half a message that would block the reader for ever).
         for group in inflight.values():
-            back = received[_key(group)]
-            yield from (_lost(j) for j in group.jobs if j.index in group.needed - back)
+            yield from group.lost(received[_key(group)])
         if broken and not produced:
             for group in remaining:
                 yield from group.lost()

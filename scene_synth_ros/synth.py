@@ -738,10 +738,10 @@ class Synthesizer:
             changed_by = rule_categories(name, ctx.spec.room_type)
             if name in ctx.waived or (changed_by is not None and obj.category not in changed_by):
                 continue
+            verdicts = INSERTION_RULES[name]
             key = (name, id(scene), len(scene.objects))
             if key not in ctx.rules:
-                ctx.rules[key] = INSERTION_RULES[name](scene)
-            verdicts = INSERTION_RULES[name]
+                ctx.rules[key] = verdicts(scene)
             before = ctx.rules[key]
             now = verdicts(after, new=obj) if name in INCREMENTAL_RULES else verdicts(after)
             if not all(ok or before.get(case) is False for case, ok in now.items()):
