@@ -2,6 +2,7 @@
 
     .venv/bin/python benchmarks/batch_gain.py [--room-type bedroom] [--sizes 1,4,8,16,32]
                                               [--threads 1] [--device cpu] [--channels-last]
+                                              [--fold]
 
 Synthesis calls the category and location modules on one image per step and the orientation,
 snap and dimensions modules on the few candidate placements of one location draw; rooms in
@@ -11,7 +12,10 @@ the median of 20 passes after 3 warm-ups. One torch thread by default, as a batc
 Last, how far a sample's outputs in the largest batch are from its outputs alone: zero would
 let lockstep promise the very rooms of one-at-a-time synthesis; anything else, rooms equal in
 distribution. ``--channels-last`` lays the networks' weights and the images out channels-last,
-as synthesis does on the CPU (``Synthesizer._image``).
+as synthesis does on the CPU (``Synthesizer._image``). ``--fold`` then times each pass
+again with the batch norms folded into the convolutions (``blocks.fold_batch_norms``, as
+synthesis runs the networks), interleaved with the unfolded pass, and prints what folding
+gains per pass and how far the folded outputs are from the unfolded ones.
 """
 import argparse
 from functools import partial
@@ -52,6 +56,7 @@ def main() -> int:
     ap.add_argument('--threads', type=int, default=1)
     ap.add_argument('--device', default='cpu', choices=('cpu', 'cuda'))
     ap.add_argument('--channels-last', action='store_true')
+    ap.add_argument('--fold', action='store_true')
     args = ap.parse_args()
     import torch
     torch.set_num_threads(args.threads)
@@ -71,17 +76,19 @@ def main() -> int:
           f'{channels} channels, {bundle.config.model.resolution} px'
           + (', channels-last' if args.channels_last else ''))
     print(f'{"batch":>5s} ' + ' '.join(f'{m:>19s}' for m in nets))
-    base = {}
-    for b in sizes:
+    def inputs_for(b: int) -> dict:
         x = torch.randn(b, channels, bundle.config.model.resolution,
                         bundle.config.model.resolution, device=args.device
                         ).contiguous(memory_format=layout)
         cat = torch.zeros(b, dtype=torch.long, device=args.device)
         counts = torch.zeros(b, categories, device=args.device)
-        inputs = {'category': (x, counts), 'location': (x,), 'orientation': (x, cat),
-                  'snap': (x, cat), 'dimensions': (x, cat)}
+        return {'category': (x, counts), 'location': (x,), 'orientation': (x, cat),
+                'snap': (x, cat), 'dimensions': (x, cat)}
+
+    base = {}
+    for b in sizes:
         cells = []
-        for name, args_ in inputs.items():
+        for name, args_ in inputs_for(b).items():
             ms = median_ms(partial(FORWARD[name], nets[name], *args_))
             per = ms / b
             base.setdefault(name, per)
@@ -107,7 +114,40 @@ def main() -> int:
             for name, fn in deterministic.items()}
     print(f'largest difference between a batch of {b} and its samples alone (outputs, or the '
           'CVAEs\' conditions): ' + ', '.join(f'{k} {v:.2g}' for k, v in diffs.items()))
+    if args.fold:
+        _fold_gain(nets, deterministic, inputs_for, sizes, layout)
     return 0
+
+
+def _fold_gain(nets, deterministic, inputs_for, sizes, layout) -> None:
+    """Unfolded and folded passes timed in turn (three rounds, the best of each), and the
+    largest difference of their outputs."""
+    import copy
+
+    import torch
+
+    from scene_synth_ros.networks.blocks import fold_batch_norms
+    folded = {name: fold_batch_norms(copy.deepcopy(net)).to(memory_format=layout)
+              for name, net in nets.items()}
+    print('batch norms folded: milliseconds per pass unfolded -> folded, and the gain')
+    print(f'{"batch":>5s} ' + ' '.join(f'{m:>19s}' for m in nets))
+    for b in sizes:
+        cells = []
+        for name, args_ in inputs_for(b).items():
+            plain, fold = [], []
+            for _ in range(3):
+                plain.append(median_ms(partial(FORWARD[name], nets[name], *args_)))
+                fold.append(median_ms(partial(FORWARD[name], folded[name], *args_)))
+            cells.append(f'{min(plain):6.2f} {min(fold):6.2f} x{min(plain) / min(fold):4.2f}')
+        print(f'{b:5d} ' + ' '.join(f'{c:>19s}' for c in cells))
+    with torch.inference_mode():
+        unfolded = {name: fn(slice(None)) for name, fn in deterministic.items()}
+        nets.update(folded)
+        diffs = {name: float((fn(slice(None)) - unfolded[name]).abs().max() /
+                             unfolded[name].abs().max())
+                 for name, fn in deterministic.items()}
+    print('largest difference of the folded outputs from the unfolded ones, relative to the '
+          'largest output: ' + ', '.join(f'{k} {v:.2g}' for k, v in diffs.items()))
 
 
 if __name__ == '__main__':

@@ -51,7 +51,7 @@ from scene_synth_ros.scene import Scene  # noqa: E402
 REASONS = ('floor', 'collide', 'door', 'rules', 'path', 'support', 'sibling')
 # The checks ``fits`` makes, by the name it calls them under in ``scene_synth_ros.synth``
 # (the design rules kept at insertion are wrapped one by one: 'rules'; the robot promise,
-# ``robot.keeps``: 'path').
+# ``robot.state_after``: 'path').
 CHECKS = {'overlaps_any': 'collide', 'enters_zone': 'door', 'support_fraction': 'support'}
 
 
@@ -71,7 +71,7 @@ class Probe:
         for name in rules:
             rules[name] = self._check(rules[name], 'rules')
         robot = synth_module.robot
-        robot.keeps = self._check(robot.keeps, 'path')
+        robot.state_after = self._check(robot.state_after, 'path')
         location = synth_module.location_distribution
 
         def location_distribution(*a, **k):

@@ -105,33 +105,51 @@ class RobotState:
     doors_connected: bool
     reached: frozenset[int]
     space: object                     # the free space the robot reaches from the doors
+    free: object = None               # all the free space (``geometry.free_space``)
 
 
-def state(scene: Scene, robot: Robot) -> RobotState:
-    """The robot in ``scene``: one free-space computation for both halves of the promise."""
+def state(scene: Scene, robot: Robot, free=None) -> RobotState:
+    """The robot in ``scene``: one free-space computation for both halves of the promise
+    (``free``: the room's free space, when the caller has it)."""
     objects = scene.first_tier
     doors = scene.room.doors
     if not doors:
         return RobotState(True, frozenset(range(len(objects))), shapely.Polygon())
-    free = free_space(scene, robot.width)
+    if free is None:
+        free = free_space(scene, robot.width)
     parts, owners = door_parts(scene.room, free, robot.width)
     connected = owners_connected(owners)
     space = shapely.union_all([parts[k] for k in set(owners) if k is not None])
     fast = prep(space)
     reached = frozenset(k for k, o in enumerate(objects)
                         if not space.is_empty and fast.intersects(reach_zone(o, robot)))
-    return RobotState(connected, reached, space)
+    return RobotState(connected, reached, space, free)
+
+
+def state_after(before: RobotState, after: Scene, robot: Robot) -> RobotState:
+    """The robot in ``after``, the room of ``before`` with one more first-tier object (its
+    last): the free space of ``before`` less the new object grown by the robot's half width.
+    The same set as ``free_space(after)``, without the union of every footprint that costs
+    most of a step's robot check (it can differ from it in the last bits of a vertex)."""
+    if before.free is None or not after.room.doors:
+        return state(after, robot)
+    grown = after.first_tier[-1].footprint().buffer(robot.width / 2)
+    return state(after, robot, before.free.difference(grown))
+
+
+def kept(before: RobotState, now: RobotState, added: int) -> bool:
+    """Whether ``now``, the room of ``before`` with first-tier object ``added`` (its index)
+    in it, keeps what held ``before``: connected doors stay connected, every object reached
+    stays reached, and the new one is reached too."""
+    if before.doors_connected and not now.doors_connected:
+        return False
+    return before.reached | {added} <= now.reached
 
 
 def keeps(before: RobotState, after: Scene, robot: Robot) -> bool:
-    """Whether adding the last first-tier object of ``after`` keeps what held ``before``:
-    connected doors stay connected, every object reached stays reached, and the new one is
-    reached too (``before`` is the state of ``after`` without that object)."""
-    now = state(after, robot)
-    if before.doors_connected and not now.doors_connected:
-        return False
-    n = len(after.first_tier) - 1
-    return before.reached | {n} <= now.reached
+    """Whether adding the last first-tier object of ``after`` keeps what held ``before``
+    (``kept``; ``before`` is the state of ``after`` without that object)."""
+    return kept(before, state_after(before, after, robot), len(after.first_tier) - 1)
 
 
 @dataclass(frozen=True)

@@ -51,7 +51,7 @@ class Wall:
         n.flags.writeable = False
         return n
 
-    @property
+    @cached_property
     def inward_yaw(self) -> float:
         """Yaw of an object whose back is on this wall and whose front faces the room."""
         nx, ny = self.normal

@@ -57,6 +57,7 @@ from .geometry import (
     support_fraction,
 )
 from .lockstep import ask
+from .networks.blocks import fold_batch_norms
 from .networks.bundle import (
     Bundle,
     BundleError,
@@ -68,7 +69,7 @@ from .networks.category import category_probabilities
 from .networks.config import resolve_device
 from .networks.location import location_distribution, sample_pixel
 from .networks.orientation import decode_angle, snap_angle
-from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer
+from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer, quarter_turns, turn_image
 from .robot import Robot, RobotReport, RobotState
 from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
 
@@ -270,11 +271,15 @@ class _Context:
     rng: np.random.Generator
     gen: torch.Generator
     timings: dict[str, float] = field(default_factory=lambda: dict.fromkeys(MODULES, 0.0))
-    # (id of the scene, its object count) -> the robot in it (``robot.state``)
-    robot: dict[tuple[int, int], RobotState] = field(default_factory=dict)
+    # the first-tier objects of a scene (``_first_tier_key``) -> the robot in it
+    # (``robot.state``), also for those of the placements that passed the robot check
+    robot: dict[tuple, RobotState] = field(default_factory=dict)
     # (rule, id of the scene, its object count) -> the rule's verdict per case
     rules: dict[tuple[str, int, int], dict[int, bool]] = field(default_factory=dict)
     crops: np.ndarray | None = None   # (B, C, N, N): reused for the local images
+    # (id of the scene, its object count, the points) whose crops at the room's yaw
+    # ``crops`` holds, or None
+    crops_held: tuple | None = None
     waived: frozenset[str] = frozenset()   # insertion rules not kept in this context
 
     @contextmanager
@@ -320,12 +325,14 @@ class Synthesizer:
 
     # ---- set-up ---------------------------------------------------------------------------
     def bundle(self, room_type: str) -> Bundle:
-        """The networks of ``room_type``; raises ``BundleError`` naming a bad file."""
+        """The networks of ``room_type``, their batch norms folded for inference
+        (``fold_batch_norms``); raises ``BundleError`` naming a bad file."""
         rt = resolve_room_type(room_type)
         if rt not in self._bundles:
             self._bundles[rt] = load_bundle(bundle_path(self.weights_dir, rt), self.device)
-            if self._channels_last:
-                for net in self._bundles[rt].networks.values():
+            for net in self._bundles[rt].networks.values():
+                fold_batch_norms(net)
+                if self._channels_last:
                     net.to(memory_format=torch.channels_last)
         return self._bundles[rt]
 
@@ -620,11 +627,24 @@ class Synthesizer:
         if ctx.crops is None or ctx.crops.shape[0] < len(points):
             ctx.crops = self._image(n, c, len(points))
         batch = ctx.crops[:len(points)]
+        # The orientation module's crops (at the room's yaw) are still in the buffer when
+        # the dimensions module asks for crops of the same points: one at a yaw a quarter
+        # turn from the room's (most: snapped yaws) is one of those turned, not drawn again
+        # (where the images are channels-last, which makes turning cheap).
+        held = (self._channels_last
+                and ctx.crops_held == (id(scene), len(scene.objects), points.tobytes()))
         for k, (pt, yaw) in enumerate(zip(points, yaws, strict=True)):
+            q = quarter_turns(yaw - ctx.frame.yaw) if held else None
+            if q is not None:
+                turn_image(batch[k], q)
+                continue
             # A crop's frame is seen once: not cached, so that the rooms' own frames stay
             # (in lockstep, 16 rooms' crops pushed them out of the cache at every step).
             r.render(scene, Frame.local(ctx.room.room_type, pt, yaw, n), out=batch[k],
                      keep=False)
+        at_room_yaw = all(yaw == ctx.frame.yaw for yaw in yaws)
+        ctx.crops_held = ((id(scene), len(scene.objects), points.tobytes()) if at_room_yaw
+                          else None)
         return torch.from_numpy(batch).to(self.device)
 
     def _orientation(self, ctx: _Context, scene: Scene, c: int, points: np.ndarray
@@ -747,14 +767,25 @@ class Synthesizer:
             if not all(ok or before.get(case) is False for case, ok in now.items()):
                 return False
         if ctx.room.doors:
-            return robot.keeps(self._robot_state(ctx, scene), after, self.config.robot)
+            before = self._robot_state(ctx, scene)
+            now = robot.state_after(before, after, self.config.robot)
+            if not robot.kept(before, now, len(after.first_tier) - 1):
+                return False
+            # The next step starts from it if ``obj`` goes in.
+            ctx.robot[_first_tier_key(after)] = now
         return True
 
     def _robot_state(self, ctx: _Context, scene: Scene) -> RobotState:
-        key = (id(scene), len(scene.objects))
+        key = _first_tier_key(scene)
         if key not in ctx.robot:
             ctx.robot[key] = robot.state(scene, self.config.robot)
         return ctx.robot[key]
+
+
+def _first_tier_key(scene: Scene) -> tuple:
+    """What the robot's state in ``scene`` depends on: its first-tier objects and where
+    they stand (second-tier objects stand on them and change nothing for the robot)."""
+    return tuple((o.id, o.category, o.position, o.yaw, o.size) for o in scene.first_tier)
 
 
 def _distinct(a: PlacedObject, b: PlacedObject) -> bool:

@@ -243,6 +243,44 @@ def test_network_shapes_and_seeded_initialisation():
         assert a['dimensions'](x, cat, torch.zeros(2, 2))[0].shape == (2, 2)
 
 
+def test_folded_batch_norms_give_the_networks_outputs():
+    from scene_synth_ros.networks.blocks import fold_batch_norms
+    cfg = PipelineConfig.from_yaml(config_dir() / 'compact.yaml').model
+    nets = build_networks('bedroom', cfg, seed=5)
+    gen = torch.Generator().manual_seed(0)
+    for net in nets.values():
+        # Batch norms as training leaves them, far from the identity they start as.
+        for m in net.modules():
+            if isinstance(m, torch.nn.BatchNorm2d):
+                m.running_mean.copy_(torch.randn(m.num_features, generator=gen))
+                m.running_var.copy_(torch.rand(m.num_features, generator=gen) + 0.2)
+                m.weight.data.copy_(torch.randn(m.num_features, generator=gen))
+                m.bias.data.copy_(torch.randn(m.num_features, generator=gen))
+        net.eval()
+    x = (torch.rand(3, 46, 64, 64, generator=gen) > 0.8).float()
+    cat, counts, z = torch.tensor([0, 4, 9]), torch.rand(3, 38, generator=gen), \
+        torch.randn(3, cfg.latent, generator=gen)
+    calls = {'category': lambda n: n(x, counts), 'location': lambda n: n(x),
+             'orientation': lambda n: n.condition(x, cat), 'snap': lambda n: n(x, cat),
+             'dimensions': lambda n: n.decode(n.condition(x, cat), cat, z)}
+    with torch.no_grad():
+        before = {name: call(nets[name]) for name, call in calls.items()}
+        with pytest.raises(ValueError, match='evaluation mode'):
+            fold_batch_norms(build_networks('bedroom', cfg, seed=5)['location'])
+        for net in nets.values():
+            assert fold_batch_norms(net) is net
+            assert not any(isinstance(m, torch.nn.BatchNorm2d) for m in net.modules())
+        for name, call in calls.items():
+            after = call(nets[name])
+            scale = before[name].abs().max()
+            assert scale > 0.1
+            assert (after - before[name]).abs().max() <= 1e-5 * scale, name
+    # Folding twice is folding once: nothing is left to fold.
+    again = fold_batch_norms(nets['location'])
+    with torch.no_grad():
+        assert torch.equal(again(x), nets['location'](x))
+
+
 def test_rotation_augmentation_is_exact(rooms):
     r = TopDownRenderer(64)
     for scene in rooms[:3]:

@@ -27,6 +27,8 @@ from scene_synth_ros.render import (
     channel_names,
     num_channels,
     pixel_to_world,
+    quarter_turns,
+    turn_image,
     wall_reach,
     world_to_pixel,
 )
@@ -213,6 +215,39 @@ def test_local_frame_orientation():
     assert abs(rows.mean() + 0.5 - 32) < 0.5 and abs((cols.mean() + 0.5 - 32) * m - 1.0) < 0.05
     rows, cols = np.nonzero(img[category_channel('bedroom', 'ottoman')])
     assert abs(cols.mean() + 0.5 - 32) < 0.5 and abs((rows.mean() + 0.5 - 32) * m - 1.0) < 0.05
+
+
+@pytest.mark.parametrize('layout', ['channels-first', 'channels-last'])
+@pytest.mark.parametrize('yaw', [0.0, 0.37, -2.9])
+def test_a_crop_turned_by_quarter_turns_is_the_crop_drawn_in_the_turned_frame(yaw, layout):
+    # The dimensions module's crops are the orientation module's turned (``Synthesizer.
+    # _local_images``): every mask must be the one drawn, and SIN/COS the yaws relative to
+    # the turned frame.
+    scene = furnished_l_scene()
+    r = TopDownRenderer()
+    masks = [c for c in range(num_channels('bedroom')) if c not in (SIN, COS)]
+    for point in ((1.83, 1.27), (0.4, 3.6), (4.1, 0.9)):
+        drawn = r.render_local(scene, point, yaw)
+        assert drawn[OBJECT].sum() > 20 and drawn[WALL].sum() > 20
+        for q in (1, 2, 3):
+            want = r.render_local(scene, point, math.remainder(yaw + q * math.pi / 2,
+                                                               2 * math.pi))
+            got = drawn.copy()
+            if layout == 'channels-last':
+                got = np.moveaxis(np.ascontiguousarray(np.moveaxis(got, 0, -1)), -1, 0)
+            turn_image(got, q)
+            assert np.array_equal(got[masks], want[masks]), (point, q)
+            np.testing.assert_allclose(got[[SIN, COS]], want[[SIN, COS]], atol=1e-6)
+            assert not np.array_equal(got[OBJECT], drawn[OBJECT])
+        same = drawn.copy()
+        turn_image(same, 4)
+        assert np.array_equal(same, drawn)
+
+
+def test_quarter_turns_are_told_from_other_angles():
+    assert [quarter_turns(k * math.pi / 2) for k in range(-4, 5)] == [0, 1, 2, 3] * 2 + [0]
+    assert quarter_turns(math.pi / 2 + 1e-12) == 1
+    assert quarter_turns(math.pi / 2 + 1e-6) is None and quarter_turns(0.3) is None
 
 
 @pytest.mark.parametrize('yaw', [0.0, 0.3])

@@ -1,6 +1,7 @@
 """The robot promise: its definition on hand-built rooms, insertion keeping it, and every
 synthesized room keeping it for robots of 0.15-0.4 m radius, checked by an independent
 raster flood fill (``raster_robot``)."""
+import itertools
 import math
 
 import pytest
@@ -11,7 +12,7 @@ import torch
 from scene_synth_ros import catalog, robot
 from scene_synth_ros.categories import ROOM_TYPES
 from scene_synth_ros.corpus import HELDOUT_SEED
-from scene_synth_ros.corpus.generate import empty_room
+from scene_synth_ros.corpus.generate import empty_room, generate_room
 from scene_synth_ros.parallel import process_pool
 from scene_synth_ros.robot import OPERATED_FRONT, Robot
 from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
@@ -119,6 +120,34 @@ def test_the_default_robot_is_the_design_rules_robot():
     # Rooms furnished for the default robot then keep the reachability rules by construction.
     from scene_synth_ros.evaluation.design_rules.access import RULE_ROBOT
     assert Robot() == RULE_ROBOT == SynthConfig().robot
+
+
+def test_the_state_after_one_more_object_is_the_state_of_the_room_with_it():
+    # Insertion derives the robot's state after a candidate from the state before it
+    # (``state_after``); it must be the state measured on the room from scratch.
+    r = Robot()
+    compared = changed = 0
+    for rt, i in itertools.product(ROOM_TYPES, range(3)):
+        furnished = generate_room(rt, HELDOUT_SEED, i)
+        scene = Scene(furnished.room, [])
+        before = robot.state(scene, r)
+        for o in furnished.first_tier:
+            after = Scene(scene.room, scene.objects + [o])
+            derived, measured = robot.state_after(before, after, r), robot.state(after, r)
+            assert derived.doors_connected == measured.doors_connected
+            assert derived.reached == measured.reached
+            assert derived.free.symmetric_difference(measured.free).area < 1e-9
+            assert robot.keeps(before, after, r) == robot.kept(before, measured,
+                                                               len(after.first_tier) - 1)
+            changed += derived.free.area < before.free.area - 1e-3
+            compared += 1
+            scene, before = after, derived
+    assert compared > 50 and changed > 40
+    # Objects that seal a wardrobe in: the derived state says so as the measured one does.
+    with_wardrobe = Scene(ROOM, [WARDROBE])
+    sealed = Scene(ROOM, [WARDROBE, bed_at(0.15)])
+    derived = robot.state_after(robot.state(with_wardrobe, r), sealed, r)
+    assert derived.reached == robot.state(sealed, r).reached == frozenset({1})
 
 
 def test_insertion_refuses_what_breaks_the_promise(synth):

@@ -194,6 +194,39 @@ def test_location_mask(synth):
     assert not synth._mask(ctx, Scene(ROOM, []), 'office chair', empty).any()
 
 
+def test_the_dimensions_crops_are_the_crops_drawn_at_their_yaws(synth):
+    # The dimensions module's crops are the orientation module's turned where the yaw is a
+    # quarter turn from the room's (``_local_images``): they must be the crops drawn there,
+    # and a crop of another scene or point is drawn, not turned.
+    room = empty_room('bedroom', 1, 2)
+    scene = generate_room('bedroom', 1, 2)
+    ctx = synth._context(room, 0)
+    points = np.array([[1.2, 1.4], [2.0, 0.9], [0.7, 2.2]])
+    q = ctx.frame.yaw
+    yaws = [math.remainder(q + k * math.pi / 2, 2 * math.pi) for k in (1, 2, 3)] + [0.4]
+    renderer = synth._renderer(ctx.frame.resolution)
+
+    def drawn(pts, ys, sc=scene):
+        return np.stack([renderer.render(sc, Frame.local('bedroom', p, y, 64))
+                         for p, y in zip(pts, ys, strict=True)])
+
+    for at in (yaws[:3], [yaws[3], yaws[0], yaws[1]]):
+        synth._local_images(ctx, scene, points, [q] * 3)
+        got = synth._local_images(ctx, scene, points, at).numpy()
+        np.testing.assert_allclose(got, drawn(points, at), atol=1e-6)
+        assert np.array_equal(got > 0.5, drawn(points, at) > 0.5)
+    # After the orientation crops of one scene, the crops of another are drawn.
+    synth._local_images(ctx, scene, points, [q] * 3)
+    fewer = Scene(scene.room, scene.objects[:2])
+    got = synth._local_images(ctx, fewer, points, yaws[:3]).numpy()
+    np.testing.assert_allclose(got, drawn(points, yaws[:3], fewer), atol=1e-6)
+    # And so are the crops of other points.
+    synth._local_images(ctx, scene, points, [q] * 3)
+    moved = points + 0.05
+    got = synth._local_images(ctx, scene, moved, yaws[:3]).numpy()
+    np.testing.assert_allclose(got, drawn(moved, yaws[:3]), atol=1e-6)
+
+
 # ---- modes -----------------------------------------------------------------------------------
 def test_generate_is_valid_and_reproducible(synth):
     room = empty_room('bathroom', 3)

@@ -12,6 +12,8 @@ from .config import EncoderConfig
 class BasicBlock(nn.Module):
     """Two 3x3 convolutions with batch norm and an identity (or 1x1 projection) shortcut."""
 
+    FOLDS = (('conv1', 'bn1'), ('conv2', 'bn2'))     # (convolution, its batch norm)
+
     def __init__(self, cin: int, cout: int, stride: int = 1):
         super().__init__()
         self.conv1 = nn.Conv2d(cin, cout, 3, stride, 1, bias=False)
@@ -94,6 +96,8 @@ class UpBlock(nn.Module):
     which avoids the checkerboard artefacts of transposed convolutions), optionally over the
     upsampled map joined with a skip feature map of the new resolution."""
 
+    FOLDS = (('conv', 'bn'),)
+
     def __init__(self, cin: int, cout: int, skip: int = 0):
         super().__init__()
         self.conv = nn.Conv2d(cin + skip, cout, 3, 1, 1, bias=False)
@@ -104,6 +108,47 @@ class UpBlock(nn.Module):
         if skip is not None:
             x = torch.cat([x, skip], dim=1)
         return torch.relu(self.bn(self.conv(x)))
+
+
+def fold_batch_norm(conv: nn.Conv2d, bn: nn.BatchNorm2d) -> nn.Conv2d:
+    """One convolution that computes ``bn(conv(x))`` as ``bn`` does in evaluation (with its
+    running statistics): the batch norm's scale goes into the weights, its shift into a
+    bias."""
+    if bn.running_var is None or bn.running_mean is None:
+        raise ValueError('a batch norm without running statistics cannot be folded')
+    scale = torch.rsqrt(bn.running_var + bn.eps)
+    shift = -bn.running_mean * scale
+    if bn.affine:
+        scale, shift = scale * bn.weight, shift * bn.weight + bn.bias
+    fused = nn.Conv2d(conv.in_channels, conv.out_channels, conv.kernel_size, conv.stride,
+                      conv.padding, conv.dilation, conv.groups, bias=True,
+                      padding_mode=conv.padding_mode, device=conv.weight.device)
+    with torch.no_grad():
+        fused.weight.copy_(conv.weight * scale.reshape(-1, 1, 1, 1))
+        bias = shift if conv.bias is None else conv.bias * scale + shift
+        fused.bias.copy_(bias)
+    return fused.requires_grad_(False).eval()
+
+
+def fold_batch_norms(net: nn.Module) -> nn.Module:
+    """``net``, in evaluation mode, with every batch norm folded into the convolution before
+    it (``fold_batch_norm``), in place: a third fewer layers to call, and each image costs
+    8-27 % less (``benchmarks/fold_gain.py``). Outputs agree with the unfolded network's to
+    float32 rounding (about 1e-5 of the logits), not bit for bit; inference only, as a folded
+    network cannot be trained or saved as a bundle."""
+    if net.training:
+        raise ValueError('batch norms fold only in evaluation mode, where they are constant')
+    for module in list(net.modules()):
+        for conv, bn in getattr(module, 'FOLDS', ()):
+            if isinstance(getattr(module, bn), nn.BatchNorm2d):
+                setattr(module, conv, fold_batch_norm(getattr(module, conv), getattr(module, bn)))
+                setattr(module, bn, nn.Identity())
+        if isinstance(module, nn.Sequential):
+            for k in range(len(module) - 1):
+                if isinstance(module[k], nn.Conv2d) and isinstance(module[k + 1], nn.BatchNorm2d):
+                    module[k] = fold_batch_norm(module[k], module[k + 1])
+                    module[k + 1] = nn.Identity()
+    return net
 
 
 def mlp(sizes: list[int], dropout: float = 0.0) -> nn.Sequential:
