@@ -691,17 +691,17 @@ class Synthesizer:
                  if catalog.footprint_distance(v, width, depth) <= best + self.config.fit_slack]
         rest = ranked[len(close):]
         b = ctx.bundle
-        index = {m: k for k, m in enumerate(b.models)}
+        index = b.model_index
         present = [index[o.model_id] for o in scene.objects if o.model_id in index]
         if present and len(close) > 1:
             co = b.cooccurrence
-            diag = co.diagonal().clamp_min(1.0)
+            rooms = b.model_rooms[present]
 
             def affinity(v) -> float:
                 k = index.get(v.model_id)
                 if k is None:
                     return 0.0
-                return float((co[k, present] / diag[present]).mean())
+                return float((co[k, present] / rooms).mean())
             close = sorted(close, key=lambda v: -affinity(v))
         return close + rest
 

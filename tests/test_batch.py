@@ -328,12 +328,13 @@ def test_rooms_come_back_one_by_one_and_ctrl_c_mid_group_keeps_them(tiny_weights
     import subprocess
     import sys
     out, whole = tmp_path / 'out', tmp_path / 'whole'
-    # One group of 48 rooms: enough that the group is still under way when the signal
-    # lands, however fast the rooms are.
-    args = batch(tiny_weights, '-n', 48, '--workers', 1, '--lockstep', 6)
+    args = batch(tiny_weights, '-n', 24, '--workers', 1, '--lockstep', 3)   # one group of 24
     cmd = [sys.executable, '-m', 'scene_synth_ros.cli', *map(str, args)]
+    # Ctrl-C as a terminal delivers it, also where the tests themselves run with SIGINT
+    # ignored (a background job of a non-interactive shell), which the command would inherit.
     proc = subprocess.Popen([*cmd, '--out', str(out)], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+                            stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         deadline = time.monotonic() + 120
         while not ((out / 'manifest.jsonl').is_file() and len(rows(out)) >= 2):
@@ -344,14 +345,14 @@ def test_rooms_come_back_one_by_one_and_ctrl_c_mid_group_keeps_them(tiny_weights
         stdout, stderr = proc.communicate(timeout=120)
     finally:
         proc.kill()
-    assert proc.returncode == 130, (stdout, stderr, len(rows(out)))
+    assert proc.returncode == 130, (stdout, stderr)
     kept = rows(out)
-    assert 2 <= len(kept) < 48 and all(r['status'] == 'ok' for r in kept)
+    assert 2 <= len(kept) < 24 and all(r['status'] == 'ok' for r in kept)
     assert all((out / 'scenes' / f'{r["room"]}.json').is_file() for r in kept)
     again = subprocess.run([*cmd, '--out', str(out)], capture_output=True, text=True,
                            timeout=180)
     assert again.returncode == 0, again.stderr
-    assert f'{len(kept)} of 48 rooms already there' in again.stdout
+    assert f'{len(kept)} of 24 rooms already there' in again.stdout
     subprocess.run([*cmd, '--out', str(whole)], check=True, capture_output=True, timeout=180)
-    assert scenes(out) == scenes(whole) and len(scenes(out)) == 48
+    assert scenes(out) == scenes(whole) and len(scenes(out)) == 24
     assert [stable(r) for r in rows(out)] == [stable(r) for r in rows(whole)]

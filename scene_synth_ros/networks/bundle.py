@@ -12,7 +12,7 @@ A bundle trained on an imported data set carries its room type's category set
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import lru_cache
+from functools import cached_property, lru_cache
 import json
 from pathlib import Path
 from typing import Any
@@ -65,6 +65,17 @@ class Bundle:
     models: list[str]
     metrics: dict[str, Any] = field(default_factory=dict)
     spec: RoomTypeSpec | None = None         # the data set's category set; None: the paper's
+
+    @cached_property
+    def model_index(self) -> dict[str, int]:
+        """The index of each of ``models`` (its row and column of ``cooccurrence``)."""
+        return {m: k for k, m in enumerate(self.models)}
+
+    @cached_property
+    def model_rooms(self) -> torch.Tensor:
+        """How many training rooms hold each model (the diagonal of ``cooccurrence``), at
+        least 1 so that it can divide."""
+        return self.cooccurrence.diagonal().clamp_min(1.0)
 
 
 def bundle_path(weights_dir: str | Path, room_type: str) -> Path:
