@@ -119,7 +119,10 @@ def state(scene: Scene, robot: Robot, free=None) -> RobotState:
         free = free_space(scene, robot.width)
     parts, owners = door_parts(scene.room, free, robot.width)
     connected = owners_connected(owners)
-    space = shapely.union_all([parts[k] for k in set(owners) if k is not None])
+    owned = [parts[k] for k in set(owners) if k is not None]
+    # One piece holds every door in nearly every room: it is the space (a union of one
+    # polygon would only copy it).
+    space = owned[0] if len(owned) == 1 else shapely.union_all(owned)
     fast = prep(space)
     reached = frozenset(k for k, o in enumerate(objects)
                         if not space.is_empty and fast.intersects(reach_zone(o, robot)))
@@ -207,8 +210,10 @@ def driven_floor(scene: Scene, robot: Robot, now: RobotState | None = None):
     return now.space.buffer(robot.radius).intersection(scene.room.polygon)
 
 
-def report(scene: Scene, robot: Robot) -> RobotReport:
-    now = state(scene, robot)
+def report(scene: Scene, robot: Robot, now: RobotState | None = None) -> RobotReport:
+    """The promise measured on ``scene`` (``now``: the robot's state in it, when the caller
+    has it)."""
+    now = now or state(scene, robot)
     objects = scene.first_tier
     unreached = tuple(o.id for k, o in enumerate(objects) if k not in now.reached)
     floor = scene.room.polygon

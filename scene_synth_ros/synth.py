@@ -435,7 +435,7 @@ class Synthesizer:
                     break
                 out.objects.append(obj)
                 added.append(obj)
-        kept = robot.report(out, self.config.robot)
+        kept = robot.report(out, self.config.robot, self._robot_state(ctx, out))
         out.meta.update({'generator': 'scene_synth_ros', 'seed': int(seed),
                          'weights': ctx.bundle.config.name, 'robot': kept.to_dict()})
         return Synthesis(out, added, stopped, time.perf_counter() - t0, dict(ctx.timings),
