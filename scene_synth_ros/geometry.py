@@ -111,6 +111,13 @@ def free_space(scene: Scene, robot_width: float = ROBOT_WIDTH):
     return free
 
 
+def free_space_less(free, obj: PlacedObject, robot_width: float = ROBOT_WIDTH):
+    """``free`` (a room's ``free_space``) less where first-tier ``obj`` keeps the robot's
+    centre away: the free space of the room with ``obj`` in it, as a set, without the union
+    of every footprint (it can differ from ``free_space`` in the last bits of a vertex)."""
+    return free.difference(obj.footprint().buffer(robot_width / 2))
+
+
 def door_parts(room: Room, free, robot_width: float = ROBOT_WIDTH):
     """The pieces of the free space ``free`` and, per door, the index of the piece that holds
     its entry point (None where the robot cannot stand inside that door)."""

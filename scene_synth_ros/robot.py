@@ -30,7 +30,7 @@ import shapely
 from shapely.geometry import Polygon
 from shapely.prepared import prep
 
-from .geometry import door_parts, free_space, owners_connected
+from .geometry import door_parts, free_space, free_space_less, owners_connected
 from .scene import PlacedObject, Scene, box_corners
 
 # What is used at its front: one must stand before it (open doors and drawers, sit on a WC,
@@ -131,13 +131,11 @@ def state(scene: Scene, robot: Robot, free=None) -> RobotState:
 
 def state_after(before: RobotState, after: Scene, robot: Robot) -> RobotState:
     """The robot in ``after``, the room of ``before`` with one more first-tier object (its
-    last): the free space of ``before`` less the new object grown by the robot's half width.
-    The same set as ``free_space(after)``, without the union of every footprint that costs
-    most of a step's robot check (it can differ from it in the last bits of a vertex)."""
+    last): its free space is that of ``before`` less the new object (``free_space_less``),
+    which saves the union of every footprint that costs most of a step's robot check."""
     if before.free is None or not after.room.doors:
         return state(after, robot)
-    grown = after.first_tier[-1].footprint().buffer(robot.width / 2)
-    return state(after, robot, before.free.difference(grown))
+    return state(after, robot, free_space_less(before.free, after.first_tier[-1], robot.width))
 
 
 def kept(before: RobotState, now: RobotState, added: int) -> bool:

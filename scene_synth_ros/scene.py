@@ -276,12 +276,17 @@ class PlacedObject(Sized):
         w, d = max(self.width - 2 * inset, 1e-4), max(self.depth - 2 * inset, 1e-4)
         return Polygon(box_corners(self.position[0], self.position[1], self.yaw, w, d))
 
+    @property
+    def placement(self) -> tuple:
+        """Its category, place and size: all that its shapes depend on."""
+        return (self.category, *self.position, self.yaw, *self.size)
+
     def remembered(self, what: Hashable, make: Callable[[], Any]) -> Any:
-        """``make()``, a shape of the object that depends only on its category, place and
-        size, remembered under ``what`` while those stay the same: insertion asks for the shapes
+        """``make()``, a shape of the object that depends only on its ``placement``,
+        remembered under ``what`` while that stays the same: insertion asks for the shapes
         of the room's objects (footprints, clear strips, reach zones) at every candidate
         placement. The shapes are shared: never modify one."""
-        place = (self.category, *self.position, self.yaw, *self.size)
+        place = self.placement
         known = self.__dict__.get('_remembered')
         if known is None or known[0] != place:
             known = self.__dict__['_remembered'] = (place, {})

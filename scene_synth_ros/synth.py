@@ -631,8 +631,8 @@ class Synthesizer:
         # the dimensions module asks for crops of the same points: one at a yaw a quarter
         # turn from the room's (most: snapped yaws) is one of those turned, not drawn again
         # (where the images are channels-last, which makes turning cheap).
-        held = (self._channels_last
-                and ctx.crops_held == (id(scene), len(scene.objects), points.tobytes()))
+        these = (id(scene), len(scene.objects), points.tobytes())
+        held = self._channels_last and ctx.crops_held == these
         for k, (pt, yaw) in enumerate(zip(points, yaws, strict=True)):
             q = quarter_turns(yaw - ctx.frame.yaw) if held else None
             if q is not None:
@@ -642,9 +642,7 @@ class Synthesizer:
             # (in lockstep, 16 rooms' crops pushed them out of the cache at every step).
             r.render(scene, Frame.local(ctx.room.room_type, pt, yaw, n), out=batch[k],
                      keep=False)
-        at_room_yaw = all(yaw == ctx.frame.yaw for yaw in yaws)
-        ctx.crops_held = ((id(scene), len(scene.objects), points.tobytes()) if at_room_yaw
-                          else None)
+        ctx.crops_held = these if all(yaw == ctx.frame.yaw for yaw in yaws) else None
         return torch.from_numpy(batch).to(self.device)
 
     def _orientation(self, ctx: _Context, scene: Scene, c: int, points: np.ndarray
@@ -785,7 +783,7 @@ class Synthesizer:
 def _first_tier_key(scene: Scene) -> tuple:
     """What the robot's state in ``scene`` depends on: its first-tier objects and where
     they stand (second-tier objects stand on them and change nothing for the robot)."""
-    return tuple((o.id, o.category, o.position, o.yaw, o.size) for o in scene.first_tier)
+    return tuple((o.id, o.placement) for o in scene.first_tier)
 
 
 def _distinct(a: PlacedObject, b: PlacedObject) -> bool:
