@@ -67,7 +67,7 @@ from .networks.bundle import (
 )
 from .networks.category import category_probabilities
 from .networks.config import resolve_device
-from .networks.location import location_distribution, sample_pixel
+from .networks.location import LocationDraws, location_distribution
 from .networks.orientation import decode_angle, snap_angle
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer, quarter_turns, turn_image
 from .robot import Robot, RobotReport, RobotState
@@ -573,13 +573,14 @@ class Synthesizer:
                                       cfg.location_temperature)
         if p is None:
             return None
+        draws = LocationDraws(p)
         tried = 0
         while tried < cfg.location_samples:
             n = min(cfg.location_batch, cfg.location_samples - tried)
             tried += n
             with ctx.timed('location'):
                 mode = cfg.location_mode and tried <= cfg.centre_draws
-                points = ctx.grid.pixel_to_world(sample_pixel(p, ctx.rng, n, offsets, mode))
+                points = ctx.grid.pixel_to_world(draws.sample(ctx.rng, n, offsets, mode))
             yaws = self._orientation(ctx, scene, c, points)
             dims = self._dimensions(ctx, scene, c, points, yaws)
             with ctx.timed('insertion'):

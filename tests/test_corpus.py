@@ -117,6 +117,27 @@ def test_statistics_match_the_paper_table(room_type):
     assert stats.windows / stats.rooms == pytest.approx(spec.windows_per_room, abs=0.12)
 
 
+def test_the_path_check_from_the_free_space_before_is_the_rooms_own(monkeypatch):
+    # A layout checks the doors' path after each piece from the free space before it, less
+    # that piece; every verdict must be the one of the room measured whole, or the corpus
+    # (the shipped weights' training data) would change.
+    from scene_synth_ros.corpus.layout import Layout
+    own = Layout.keeps_path
+    verdicts = []
+
+    def both(lay, new=None):
+        ok = own(lay, new)
+        verdicts.append((ok, geometry.doors_connected(lay.scene)))
+        return ok
+
+    monkeypatch.setattr(Layout, 'keeps_path', both)
+    for rt in ROOM_TYPES:
+        for i in range(6):
+            generate_room(rt, seed=4, index=i)
+    assert len(verdicts) > 100 and not all(ok for ok, _ in verdicts)
+    assert all(ok == whole for ok, whole in verdicts)
+
+
 def test_same_seed_same_room_and_worker_count_does_not_matter():
     a = generate_room('living', seed=5, index=17)
     b = generate_room('living', seed=5, index=17)

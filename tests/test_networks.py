@@ -18,7 +18,12 @@ from scene_synth_ros.networks.examples import (
     placeable,
     rotate_scene,
 )
-from scene_synth_ros.networks.location import location_distribution, sample_pixel
+from scene_synth_ros.networks.location import (
+    LocationDraws,
+    blob_centre,
+    location_distribution,
+    sample_pixel,
+)
 from scene_synth_ros.networks.orientation import decode_angle, is_snapped, snap_angle
 from scene_synth_ros.paths import config_dir
 from scene_synth_ros.render import COS, SIN, Frame, TopDownRenderer
@@ -162,6 +167,30 @@ def test_location_target_radius(rooms):
         assert np.abs(offset).max() <= r + 0.5 + 1e-6
 
 
+def test_location_draws_are_those_of_rng_choice_and_keep_the_blob_centres():
+    # The synthesizer draws a category's retries from one LocationDraws, which keeps the
+    # cumulative sum that rng.choice would make again at every call: the same pixels from
+    # the same random numbers, so the rooms are those of rng.choice.
+    rng = np.random.default_rng(7)
+    for trial in range(40):
+        p = rng.random((16, 16)) ** rng.uniform(1, 12)
+        p[rng.random((16, 16)) < rng.uniform(0, 0.95)] = 0.0
+        p[rng.integers(16), rng.integers(16)] = 1e-3
+        p /= p.sum()
+        draws, ours, theirs = LocationDraws(p), np.random.default_rng(trial), \
+            np.random.default_rng(trial)
+        for n in (1, 3, 1, 12, 1):
+            assert np.array_equal(draws.pixels(ours, n),
+                                  theirs.choice(p.size, size=n, p=p.ravel()))
+        assert ours.random() == theirs.random()      # both streams used alike
+        starts = rng.integers(0, 16, size=(5, 2)).astype(float)
+        assert np.array_equal(blob_centre(p, starts, draws.blocks), blob_centre(p, starts))
+        a, b = np.random.default_rng(trial), np.random.default_rng(trial)
+        for mode in (True, True, False):
+            assert np.array_equal(draws.sample(a, 2, mode=mode),
+                                  sample_pixel(p, b, 2, mode=mode))
+
+
 def test_offsets_put_sampled_locations_on_the_centroid(rooms):
     src = ExampleSource('bedroom', rooms[:6], 64, 64, augment=False, target_radius=1)
     scene = rooms[0]
@@ -178,7 +207,6 @@ def test_offsets_put_sampled_locations_on_the_centroid(rooms):
 
 
 def test_draws_move_to_the_centre_of_their_blob():
-    from scene_synth_ros.networks.location import blob_centre
     p = np.zeros((16, 16))
     p[4:7, 9:12] = 1.0                      # a 3 x 3 blob centred on pixel (5, 10)
     p[12, 2] = 0.5                          # a lone pixel elsewhere

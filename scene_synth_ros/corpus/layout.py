@@ -12,7 +12,16 @@ from shapely.prepared import prep
 
 from ..catalog import ModelVariant
 from ..evaluation.design_rules.walls import WINDOW_ZONE_DEPTH
-from ..geometry import MIN_SUPPORT, door_zone, doors_connected, shrunk_footprint, support_fraction
+from ..geometry import (
+    MIN_SUPPORT,
+    door_parts,
+    door_zone,
+    free_space,
+    free_space_less,
+    owners_connected,
+    shrunk_footprint,
+    support_fraction,
+)
 from ..scene import PlacedObject, Room, Scene, Wall, rotation
 from .clearance import Zone, zones
 
@@ -50,6 +59,10 @@ class Layout:
         self._shrunk: dict[str, Polygon] = {}   # first-tier footprints less TOUCH, by id
         self._zones: list[Zone] = []      # floor reserved by the pieces placed (``clearance``)
         self.seated: set[str] = set()     # ids of the desks, tables, pianos given a seat
+        # The reference robot's free space with the first-tier pieces placed so far (None:
+        # not known), so that a piece's path check removes only its own grown footprint
+        # instead of growing the union of every footprint again.
+        self._robot_free = None
 
     # ---- the rules --------------------------------------------------------------------
     def fits(self, obj: PlacedObject) -> bool:
@@ -108,21 +121,34 @@ class Layout:
                   if o.category not in zone.allowed and o.id != zone.owner]
         return not (others and shapely.intersects(zone.polygon, others).any())
 
-    def keeps_path(self) -> bool:
-        """Every door can still be reached from every other for the reference robot."""
-        return doors_connected(self.scene)
+    def keeps_path(self, new: PlacedObject | None = None) -> bool:
+        """Every door can still be reached from every other for the reference robot
+        (``new``: the piece added last, after which the free space is the one before less
+        that piece)."""
+        if not self.room.doors:
+            return True
+        if new is not None and self._robot_free is not None:
+            free = free_space_less(self._robot_free, new)
+        else:
+            free = free_space(self.scene)
+        self._robot_free = free
+        return owners_connected(door_parts(self.room, free)[1])
 
     def add(self, obj: PlacedObject, check_path: bool = True,
             zones: list[Zone] | None = None) -> bool:
         """Add a first-tier object that ``fits``, reserving ``zones`` (default: what it
         claims); undone if it cuts the path between doors."""
         kept = self.claim(obj) if zones is None else zones
+        before = self._robot_free
         self.scene.objects.append(obj)
         self._first.append((obj, obj.footprint()))
         self._shrunk[obj.id] = shrunk_footprint(obj, TOUCH)
         self._zones += kept or []
-        if check_path and not self.keeps_path():
+        if not check_path:
+            self._robot_free = None
+        elif not self.keeps_path(obj):
             self.remove(obj)
+            self._robot_free = before
             return False
         return True
 
@@ -133,6 +159,7 @@ class Layout:
         self._first = [(o, p) for o, p in self._first if o is not obj]
         self._zones = [z for z in self._zones if z.owner != obj.id]
         self._shrunk.pop(obj.id, None)
+        self._robot_free = None
 
     def first_tier(self, *categories: str) -> list[PlacedObject]:
         return [o for o, _ in self._first if not categories or o.category in categories]
