@@ -216,6 +216,13 @@ def test_batch_bad_input_is_one_sentence(cli, tiny_weights, tmp_path):
     proc = cli(*batch(tiny_weights, '-n', 1, '--out', d, '--temperature', 0.5), ok=False)
     assert proc.returncode == 2 and 'holds a batch of other rooms' in proc.stderr
     assert 'location_temperature 0.8 there, 0.5 now' in proc.stderr
+    # A directory of shells drawn before first_shell (batch.json without its name) is not
+    # resumed with first_shell's.
+    described = json.loads((d / 'batch.json').read_text())
+    del described['source']['shells']
+    (d / 'batch.json').write_text(json.dumps(described))
+    proc = cli(*batch(tiny_weights, '-n', 2, '--out', d), ok=False)
+    assert proc.returncode == 2 and "source.shells None there, 'first attempt' now" in proc.stderr
 
 
 def _descendants() -> set[int]:

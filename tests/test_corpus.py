@@ -7,8 +7,9 @@ import pytest
 
 from scene_synth_ros import geometry
 from scene_synth_ros.categories import CATEGORIES, ROOM_TYPES, room_spec
-from scene_synth_ros.corpus.generate import generate_corpus, generate_room
+from scene_synth_ros.corpus.generate import first_shell, generate_corpus, generate_room
 from scene_synth_ros.corpus.stats import collect
+from scene_synth_ros.scene import Scene
 from scene_synth_ros.schema import dump_scene, parse_scene
 
 SEEDS = range(40)
@@ -136,6 +137,26 @@ def test_the_path_check_from_the_free_space_before_is_the_rooms_own(monkeypatch)
             generate_room(rt, seed=4, index=i)
     assert len(verdicts) > 100 and not all(ok for ok, _ in verdicts)
     assert all(ok == whole for ok, whole in verdicts)
+
+
+def test_the_first_shell_is_the_corpus_rooms_unless_its_first_attempt_was_sent_back():
+    # Batches draw first_shell: the shell of the corpus room's first attempt, without
+    # furnishing the room. That is the corpus room's own shell where the corpus kept its
+    # first attempt, and a shell the corpus drew (and sent back) where it did not.
+    kept = later = 0
+    for i in range(80):
+        room = generate_room('bedroom', seed=0, index=i)
+        shell = first_shell('bedroom', seed=0, index=i)
+        if room.meta.get('attempt', 0) == 0:
+            assert shell == room.room
+            kept += 1
+        else:
+            assert shell != room.room and shell.room_type == 'bedroom'
+            assert geometry.check_scene(Scene(shell, [])).ok
+            later += 1
+    assert kept > 60 and later > 0
+    assert first_shell('bedroom', 0, 3) == first_shell('bedroom', 0, 3)
+    assert first_shell('bedroom', 1, 3) != first_shell('bedroom', 0, 3)
 
 
 def test_same_seed_same_room_and_worker_count_does_not_matter():

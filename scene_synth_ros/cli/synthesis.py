@@ -170,14 +170,14 @@ def cmd_generate(args) -> int:
         title = f'{Path(args.layout).stem} (seed {args.seed})'
     else:
         from ..categories import defined_room_type
-        from ..corpus.generate import empty_room
+        from ..corpus.generate import first_shell
         rt = room_types(args.room_type)
         if len(rt) != 1:
             raise UserError('generate furnishes one room: give one --room-type, not all')
         if defined_room_type(rt[0]):
             raise UserError(f'{rt[0]} is a room type of the data set the weights were trained '
                             f'on, and the corpus makes only the paper\'s rooms: give --layout')
-        room = empty_room(rt[0], args.seed)
+        room = first_shell(rt[0], args.seed)
         title = f'{rt[0]} (seed {args.seed})'
     result = synth.generate(room, args.seed)
     print(object_table(result.scene.objects, f'{room.room_type}, {room.area:.1f} m2:'))
