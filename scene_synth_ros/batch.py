@@ -5,7 +5,7 @@ Room ``i`` of a batch (``i`` = 0 .. n-1) is furnished with the synthesis seed ``
 in the ``i``-th room of its source (``Source``; the manifest's ``layout`` in brackets):
 
 - shells (``generate -n``): the shell of the first attempt at corpus room (type, ``seed``,
-  ``i``), ``corpus.generate.first_shell`` (the corpus room's own shell in 92-98 % of rooms,
+  ``i``), ``corpus.generate.first_shell`` (the corpus room's own shell in 92-98.5 % of rooms,
   drawn without furnishing the corpus room); several room types (``all``) are cycled, room
   ``i`` being of the ``i % k``-th (``bedroom shell: corpus seed 0, room 42``);
 - one layout or partial room (``generate --layout F -n``, ``complete F -n``): that room every

@@ -145,7 +145,7 @@ def empty_room(room_type: str, seed: int = 0, index: int = 0) -> Room:
 def first_shell(room_type: str, seed: int = 0, index: int = 0) -> Room:
     """The shell of the first attempt at corpus room (``seed``, ``index``), drawn without
     furnishing it (under a millisecond): the corpus room's own shell (``empty_room``) but
-    where that attempt was sent back and the corpus kept a later one (8 % of bedrooms, 2-6 %
+    where that attempt was sent back and the corpus kept a later one (8 % of bedrooms, 1.5-6 %
     of the other types), a shell drawn exactly as the corpus draws its rooms' shells. The
     shells of batches (``generate -n``), which need no corpus room beside them."""
     room_type = corpus_room_type(room_type)
