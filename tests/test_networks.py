@@ -183,6 +183,7 @@ def test_location_draws_are_those_of_rng_choice_and_keep_the_blob_centres():
             assert np.array_equal(draws.pixels(ours, n),
                                   theirs.choice(p.size, size=n, p=p.ravel()))
         assert ours.random() == theirs.random()      # both streams used alike
+        # Its block sums and draws, kept across calls, are those made afresh at each call.
         starts = rng.integers(0, 16, size=(5, 2)).astype(float)
         assert np.array_equal(blob_centre(p, starts, draws.blocks), blob_centre(p, starts))
         a, b = np.random.default_rng(trial), np.random.default_rng(trial)
