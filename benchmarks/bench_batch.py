@@ -69,12 +69,13 @@ def throughput(room_type: str, n: int, workers: int, lockstep: int, weights: str
     rows = _rows(out)
     ok = [r for r in rows if r['status'] == 'ok']
     secs = sorted(r['seconds'] for r in ok)
+    cpu = [r['cpu_seconds'] for r in ok]
     print(f'{workers} worker(s), lockstep {lockstep}: {n} {room_type}s in {s.seconds:.1f} s = '
           f'{s.rooms_per_second:.2f} rooms/s (start-up included); {len(ok)} ok, '
           f'{s.objects_per_room:.2f} objects a room, {s.valid} valid, '
           f'{s.robot_kept} robot promise kept; per room in a worker: '
           + (f'median {secs[len(secs) // 2]:.3f} s, ' if lockstep == 1 else '')
-          + f'mean {sum(secs) / len(secs):.3f} s; peak resident '
+          + f'mean {sum(secs) / len(secs):.3f} s, CPU {sum(cpu) / len(cpu):.3f} s; peak resident '
           f'memory per worker: {", ".join(f"{v:.0f}" for v in s.peak_mb.values())} MB',
           flush=True)
     print(f'  after: {_load()}', flush=True)

@@ -41,15 +41,18 @@ The directory::
 A row: ``index``, ``room``, ``status`` (``ok`` or ``error``), ``seed``, ``layout``, then for
 a room furnished ``room_type``, ``area``, ``objects``, ``added``, ``stopped``, ``valid``
 (``geometry.check_scene``), ``robot_kept`` (the robot promise) and ``files``; for one that
-failed ``error``, the package's one-sentence reason. Every row has ``seconds`` and the
-``worker`` (host:pid) with its resident and peak memory (``rss_mb``, ``peak_mb``).
+failed ``error``, the package's one-sentence reason. Every row has ``seconds`` (wall time),
+``cpu_seconds`` (the worker process's CPU time over the same span: on a shared machine a
+steadier measure of what a room costs) and the ``worker`` (host:pid) with its resident and
+peak memory (``rss_mb``, ``peak_mb``).
 
 Rooms in lockstep (``lockstep``, ``--lockstep R``): the rooms of index ``kG`` to ``kG + G -
 1`` form group ``k`` (``G = GROUP_ROUNDS * R``; ``G = 1`` for R = 1), furnished by one worker
 R at a time, in index order, the next room starting when one ends, each module's forward
 pass batched across the rooms under way (``lockstep.each``). A room's ``seconds`` in the
 manifest is then the group's wall time from the end of the room before it (from the start of
-the group for the first), so that the rooms of a group add up to its time.
+the group for the first), so that the rooms of a group add up to its time (``cpu_seconds``
+likewise).
 
 Determinism: a room depends only on its index, the seed, its source, the synthesis options,
 the lockstep R and the weights, never on which worker furnished it or when. Every worker has a
@@ -356,18 +359,18 @@ class Worker:
         room's ``seconds`` is the group's wall time since the room before it ended (since
         the start for the first), so that a group's rooms add up to its time."""
         jobs = group.jobs
-        last = time.perf_counter()
+        last, last_cpu = time.perf_counter(), time.process_time()
         for _, result in lockstep.each([lambda job=job: self.furnish(job) for job in jobs],
                                        group.width,
                                        [k for k, j in enumerate(jobs) if j.index in group.needed]):
-            now = time.perf_counter()
-            result.row['seconds'] = round(now - last, 4)
-            last = now
+            now, cpu = time.perf_counter(), time.process_time()
+            result.row.update(seconds=round(now - last, 4), cpu_seconds=round(cpu - last_cpu, 4))
+            last, last_cpu = now, cpu
             yield result
 
     def furnish(self, job: RoomJob) -> RoomResult:
         """Room ``job`` and its files, or a row saying in one sentence why it failed."""
-        t0 = time.perf_counter()
+        t0, cpu0 = time.perf_counter(), time.process_time()
         row: dict = {'index': job.index, 'room': job.name, 'seed': job.seed,
                      'layout': job.layout}
         files: dict[str, bytes] = {}
@@ -380,7 +383,8 @@ class Worker:
             row.update(status='error', error=sentence(f'internal error: {type(e).__name__}: {e}'))
             files = {}
         rss, peak = _memory_mb()
-        row.update(seconds=round(time.perf_counter() - t0, 4), worker=self.name,
+        row.update(seconds=round(time.perf_counter() - t0, 4),
+                   cpu_seconds=round(time.process_time() - cpu0, 4), worker=self.name,
                    rss_mb=None if rss is None else round(rss, 1),
                    peak_mb=None if peak is None else round(peak, 1))
         return RoomResult(row, files)
@@ -488,8 +492,8 @@ def _lost(job: RoomJob) -> RoomResult:
     """The row of a room whose worker process died while it was in flight."""
     return RoomResult({'index': job.index, 'room': job.name, 'seed': job.seed,
                        'layout': job.layout, 'status': 'error',
-                       'error': LOST, 'seconds': None, 'worker': None, 'rss_mb': None,
-                       'peak_mb': None}, {})
+                       'error': LOST, 'seconds': None, 'cpu_seconds': None, 'worker': None,
+                       'rss_mb': None, 'peak_mb': None}, {})
 
 
 def _pool_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int

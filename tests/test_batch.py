@@ -16,7 +16,7 @@ from scene_synth_ros.batch import available_formats
 from scene_synth_ros.schema import load_scene
 
 # What differs between two runs of the same room: when and where it was made.
-RUN_FIELDS = ('seconds', 'worker', 'rss_mb', 'peak_mb')
+RUN_FIELDS = ('seconds', 'cpu_seconds', 'worker', 'rss_mb', 'peak_mb')
 
 
 def rows(out: Path) -> list[dict]:
@@ -53,7 +53,7 @@ def test_same_rooms_on_one_and_two_workers_and_a_killed_run_resumes(cli, tiny_we
     for r in made:
         scene = load_scene(a / 'scenes' / f'{r["room"]}.json')
         assert r['status'] == 'ok' and r['valid'] and r['objects'] == len(scene)
-        assert r['seconds'] > 0 and r['peak_mb'] > 0
+        assert r['seconds'] > 0 and 0 < r['cpu_seconds'] and r['peak_mb'] > 0
     assert sum(r['objects'] for r in made) > 0
     summary = json.loads((b / 'summary.json').read_text())
     assert summary['rooms_ok'] == 18 and summary['workers'] == 2
