@@ -137,12 +137,14 @@ def owners_connected(owners) -> bool:
     return None not in owners and len(set(owners)) == 1
 
 
-def doors_connected(scene: Scene, robot_width: float = ROBOT_WIDTH) -> bool:
-    """Whether the robot can stand inside every door and drive between all of them."""
+def doors_connected(scene: Scene, robot_width: float = ROBOT_WIDTH, free=None) -> bool:
+    """Whether the robot can stand inside every door and drive between all of them
+    (``free``: the room's ``free_space``, when the caller has it)."""
     if not scene.room.doors:
         return True
-    _, owners = door_parts(scene.room, free_space(scene, robot_width), robot_width)
-    return owners_connected(owners)
+    if free is None:
+        free = free_space(scene, robot_width)
+    return owners_connected(door_parts(scene.room, free, robot_width)[1])
 
 
 @dataclass

@@ -147,11 +147,6 @@ def kept(before: RobotState, now: RobotState, added: int) -> bool:
     return before.reached | {added} <= now.reached
 
 
-def keeps(before: RobotState, after: Scene, robot: Robot) -> bool:
-    """Whether adding the last first-tier object of ``after`` keeps what held ``before``
-    (``kept``; ``before`` is the state of ``after`` without that object)."""
-    return kept(before, state_after(before, after, robot), len(after.first_tier) - 1)
-
 
 @dataclass(frozen=True)
 class RobotReport:

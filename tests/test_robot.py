@@ -137,8 +137,8 @@ def test_the_state_after_one_more_object_is_the_state_of_the_room_with_it():
             assert derived.doors_connected == measured.doors_connected
             assert derived.reached == measured.reached
             assert derived.free.symmetric_difference(measured.free).area < 1e-9
-            assert robot.keeps(before, after, r) == robot.kept(before, measured,
-                                                               len(after.first_tier) - 1)
+            added = len(after.first_tier) - 1
+            assert robot.kept(before, derived, added) == robot.kept(before, measured, added)
             changed += derived.free.area < before.free.area - 1e-3
             compared += 1
             scene, before = after, derived

@@ -14,11 +14,10 @@ from ..catalog import ModelVariant
 from ..evaluation.design_rules.walls import WINDOW_ZONE_DEPTH
 from ..geometry import (
     MIN_SUPPORT,
-    door_parts,
     door_zone,
+    doors_connected,
     free_space,
     free_space_less,
-    owners_connected,
     shrunk_footprint,
     support_fraction,
 )
@@ -132,7 +131,7 @@ class Layout:
         else:
             free = free_space(self.scene)
         self._robot_free = free
-        return owners_connected(door_parts(self.room, free)[1])
+        return doors_connected(self.scene, free=free)
 
     def add(self, obj: PlacedObject, check_path: bool = True,
             zones: list[Zone] | None = None) -> bool:
