@@ -6,9 +6,11 @@ For each ``--workers`` count and each ``--lockstep`` R, ``-n`` complete rooms of
 directory exactly as ``scene-synth generate -n N --out DIR --workers W --lockstep R`` does,
 start-up included; the runs are interleaved (every R for one worker count, then the next
 count). ``--location-batch`` sets ``SynthConfig.location_batch`` (candidate placements decoded
-together; default that of SynthConfig). In lockstep a room's seconds are its group's wall
-time since the room before it ended, so only their mean is printed: the group's time shared
-equally among its rooms (rooms often end in the same round, a few microseconds apart).
+together; default that of SynthConfig). ``--runtime`` names what runs the networks
+(``SynthConfig.runtime``, default auto); several are run in turn for each R. In lockstep
+a room's seconds are its group's wall time since the room before it ended, so only their
+mean is printed: the group's time shared equally among its rooms (rooms often end in the
+same round, a few microseconds apart).
 With ``--soak N``, a batch of N rooms on ``--soak-workers`` workers, and each worker's
 resident memory after its 100th room and after its last (the issue's target: no growth
 beyond 50 MB after the first 100 rooms); ``--soak-report DIR`` says the same of a soak
@@ -17,8 +19,8 @@ average is printed beside the figures: on a shared machine they are only as good
 cores were free.
 
     .venv/bin/python benchmarks/bench_batch.py [-n 200] [--workers 1 2] [--lockstep 1 8 32]
-        [--room-type bedroom] [--location-batch N] [--soak 10000] [--soak-workers 2]
-        [--weights-dir DIR] [--keep DIR]
+        [--room-type bedroom] [--location-batch N] [--runtime auto|torch|onnxruntime ...]
+        [--soak 10000] [--soak-workers 2] [--weights-dir DIR] [--keep DIR]
     .venv/bin/python benchmarks/bench_batch.py --soak-report DIR/soak
 """
 import argparse
@@ -50,8 +52,8 @@ def _rows(out: Path) -> list[dict]:
 
 def _batch(out: Path, room_type: str, n: int, workers: int, weights: str | None,
            progress: bool = False, lockstep: int | None = None,
-           location_batch: int | None = None):
-    synthesis = SynthConfig()
+           location_batch: int | None = None, runtime: str = 'auto'):
+    synthesis = SynthConfig(runtime=runtime)
     if location_batch is not None:
         synthesis.location_batch = location_batch
     cfg = BatchConfig(out=out, source=Source.shells([room_type]), n=n, workers=workers,
@@ -61,17 +63,19 @@ def _batch(out: Path, room_type: str, n: int, workers: int, weights: str | None,
 
 
 def throughput(room_type: str, n: int, workers: int, lockstep: int, weights: str | None,
-               root: Path, location_batch: int | None) -> None:
+               root: Path, location_batch: int | None, runtime: str = 'auto') -> None:
     print(f'  before: {_load()}', flush=True)
-    out = root / f'speed_{workers}_{lockstep}'
+    out = root / f'speed_{workers}_{lockstep}_{runtime}'
     s = _batch(out, room_type, n, workers, weights, lockstep=lockstep,
-               location_batch=location_batch)
+               location_batch=location_batch, runtime=runtime)
+    chosen = json.loads((out / 'batch.json').read_text())['synthesis']['runtime']
     rows = _rows(out)
     ok = [r for r in rows if r['status'] == 'ok']
     secs = sorted(r['seconds'] for r in ok)
     cpu = [r['cpu_seconds'] for r in ok]
-    print(f'{workers} worker(s), lockstep {lockstep}: {n} {room_type}s in {s.seconds:.1f} s = '
-          f'{s.rooms_per_second:.2f} rooms/s (start-up included); {len(ok)} ok, '
+    print(f'{workers} worker(s), lockstep {lockstep}, {chosen}: {n} {room_type}s in '
+          f'{s.seconds:.1f} s = {s.rooms_per_second:.2f} rooms/s (start-up included); '
+          f'{len(ok)} ok, '
           f'{s.objects_per_room:.2f} objects a room, {s.valid} valid, '
           f'{s.robot_kept} robot promise kept; per room in a worker: '
           + (f'median {secs[len(secs) // 2]:.3f} s, ' if lockstep == 1 else '')
@@ -123,6 +127,8 @@ def main():
     ap.add_argument('--lockstep', type=int, nargs='+', default=[1, 8, 32])
     ap.add_argument('--location-batch', type=int, default=None)
     ap.add_argument('--room-type', default='bedroom')
+    ap.add_argument('--runtime', nargs='+', default=['auto'],
+                    choices=('auto', 'torch', 'onnxruntime'))
     ap.add_argument('--soak', type=int, default=0, help='rooms of the memory soak (0: none)')
     ap.add_argument('--soak-workers', type=int, default=2)
     ap.add_argument('--weights-dir', default=None)
@@ -138,8 +144,9 @@ def main():
         if args.n:
             for w in args.workers:
                 for r in args.lockstep:
-                    throughput(args.room_type, args.n, w, r, args.weights_dir, root,
-                               args.location_batch)
+                    for runtime in args.runtime:
+                        throughput(args.room_type, args.n, w, r, args.weights_dir, root,
+                                   args.location_batch, runtime)
         if args.soak:
             soak(args.room_type, args.soak, args.soak_workers, args.weights_dir, root)
 

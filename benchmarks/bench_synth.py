@@ -9,6 +9,7 @@ alone, for the wall time per room, the time per module and the peak memory.
 
     .venv/bin/python benchmarks/bench_synth.py [-n 500] [--corpus-rooms 2000]
         [--timing-rooms 100] [--room-type all] [--workers 2] [--device cpu|cuda]
+        [--runtime auto|torch|onnxruntime]
 """
 import argparse
 from collections import Counter
@@ -86,9 +87,9 @@ def quality(room_types, n, corpus_rooms, workers, weights):
               f'{s["stop"]:>14d}/{s["max_objects"]}/{s["nothing_fits"]}')
 
 
-def timing(rooms, weights, device='cpu'):
+def timing(rooms, weights, device='cpu', runtime='auto'):
     from scene_synth_ros.synth import SynthConfig, Synthesizer
-    synth = Synthesizer(weights, SynthConfig(device=device))
+    synth = Synthesizer(weights, SynthConfig(device=device, runtime=runtime))
     synth.bundle('bedroom')
     synth.generate(empty_room('bedroom', HELDOUT_SEED, 10_000), seed=0)   # warm-up
     seconds, modules, objects = [], Counter(), 0
@@ -108,7 +109,7 @@ def timing(rooms, weights, device='cpu'):
     print(f'\ncomplete bedrooms from empty, {rooms} rooms, {objects / rooms:.1f} objects each, '
           f'{os.cpu_count()} cores ({platform.processor() or platform.machine()}), '
           f'torch {torch.__version__} with {torch.get_num_threads()} threads, '
-          f'networks on {synth.device}:')
+          f'networks on {synth.device} run by {synth.runtime}:')
     print(f'  median {statistics.median(seconds):.3f} s, mean {statistics.mean(seconds):.3f} s, '
           f'p90 {sorted(seconds)[int(0.9 * len(seconds))]:.3f} s, max {max(seconds):.3f} s '
           f'per room (paper: 1.86 s on a GTX 1080 Ti)')
@@ -129,12 +130,14 @@ def main():
     ap.add_argument('--weights-dir', default=None)
     ap.add_argument('--device', default='cpu', choices=('cpu', 'cuda'),
                     help='where the timed rooms run their networks')
+    ap.add_argument('--runtime', default='auto', choices=('auto', 'torch', 'onnxruntime'),
+                    help='what runs the timed rooms\' networks')
     args = ap.parse_args()
     rts = list(ROOM_TYPES) if args.room_type == 'all' else [args.room_type]
     if args.n:
         quality(rts, args.n, args.corpus_rooms, args.workers, args.weights_dir)
     if args.timing_rooms:
-        timing(args.timing_rooms, args.weights_dir, args.device)
+        timing(args.timing_rooms, args.weights_dir, args.device, args.runtime)
 
 
 if __name__ == '__main__':

@@ -96,6 +96,7 @@ from .categories import resolve_room_type
 from .errors import SceneSynthError, quoted, sentence
 from .files import write_atomic
 from .limits import MAX_PAYLOAD_BYTES
+from .networks.config import resolve_device, resolve_runtime
 from .synth import SynthConfig
 
 LAYOUT_SUFFIXES = ('.json', '.yaml', '.yml')
@@ -726,6 +727,17 @@ class Manifest:
         write_atomic(self.path, text)
 
 
+def _runtime_chosen(cfg: BatchConfig) -> BatchConfig:
+    """``cfg`` with the runtime ``auto`` chooses here: the batch's, named in batch.json and
+    sent to the workers, so that a directory furnished by onnxruntime is not resumed, nor its
+    rooms made, by torch on a machine without it."""
+    try:
+        runtime = resolve_runtime(cfg.synthesis.runtime, resolve_device(cfg.synthesis.device))
+    except ValueError as e:
+        raise BatchError(str(e)) from None
+    return replace(cfg, synthesis=replace(cfg.synthesis, runtime=runtime))
+
+
 def _identity(cfg: BatchConfig, weights: Path) -> dict:
     """What determines the rooms (batch.json): not how many, by whom, nor what else is
     written."""
@@ -845,6 +857,7 @@ def run_batch(cfg: BatchConfig, echo: Callable[[str], None] = print) -> BatchSum
     exports = parse_formats(','.join(cfg.exports))
     out = Path(cfg.out)
     weights = _check_weights(cfg)
+    cfg = _runtime_chosen(cfg)
     # A group is always the same rooms (see the module docstring): the last one goes on
     # beyond -n with rooms that start while the last needed ones are under way.
     r, g = cfg.lockstep, group_size(cfg.lockstep)

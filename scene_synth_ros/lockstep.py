@@ -34,22 +34,18 @@ from typing import Callable, Collection, Iterator, Sequence, TypeVar
 from greenlet import getcurrent, greenlet
 import torch
 
-T = TypeVar('T')
+from .networks.runtime import OnnxCalls
+from .networks.runtime import forward as torch_forward
 
-# The network calls of synthesis: what each takes and gives, batch first.
-#   category     (image, counts)    -> (logits,)            next category or STOP
-#   location     (image,)           -> (logits, offsets)    offsets None without them
-#   orientation  (crops, cats, z)   -> (outputs, snap logits)
-#   dimensions   (crops, cats, z)   -> (log footprints,)
-MODULE_CALLS = ('category', 'location', 'orientation', 'dimensions')
+T = TypeVar('T')
 
 
 @dataclass
 class Request:
-    """One network call of one room: ``module`` of ``networks`` (a bundle's) on ``args``,
-    tensors with the batch first."""
+    """One network call of one room: ``module`` of ``networks`` (a bundle's networks, or
+    their ``OnnxCalls``) on ``args``, tensors with the batch first."""
 
-    networks: dict
+    networks: dict | OnnxCalls
     module: str
     args: tuple[torch.Tensor, ...]
 
@@ -58,21 +54,13 @@ class Request:
         return self.args[0].shape[0]
 
 
-def forward(networks: dict, module: str, *args: torch.Tensor
+def forward(networks, module: str, *args: torch.Tensor
             ) -> tuple[torch.Tensor | None, ...]:
-    """``module``'s forward pass over a batch (see ``MODULE_CALLS``)."""
-    if module == 'category':
-        return (networks['category'](*args),)
-    if module == 'location':
-        return networks['location'].predict(*args)
-    if module in ('orientation', 'dimensions'):
-        crops, cats, z = args
-        net = networks[module]
-        out = net.decode(net.condition(crops, cats), cats, z)
-        if module == 'dimensions':
-            return (out,)
-        return out, networks['snap'](crops, cats)
-    raise ValueError(f'no network call {module!r}; the calls are {", ".join(MODULE_CALLS)}')
+    """``module``'s forward pass over a batch (``networks.runtime.MODULE_CALLS``):
+    ``networks`` is a bundle's networks (torch) or its ``OnnxCalls``."""
+    if isinstance(networks, OnnxCalls):
+        return networks(module, *args)
+    return torch_forward(networks, module, *args)
 
 
 def _cat(parts: list[torch.Tensor]) -> torch.Tensor:
@@ -115,7 +103,7 @@ class Room(greenlet):
     """The greenlet of one room of a lockstep group."""
 
 
-def ask(networks: dict, module: str, *args: torch.Tensor
+def ask(networks, module: str, *args: torch.Tensor
         ) -> tuple[torch.Tensor | None, ...]:
     """The answer to one network call: from the coordinator, inside a lockstep group; right
     away, as a batch of one, outside."""

@@ -66,9 +66,10 @@ from .networks.bundle import (
     load_bundle,
 )
 from .networks.category import category_probabilities
-from .networks.config import resolve_device
+from .networks.config import resolve_device, resolve_runtime
 from .networks.location import LocationDraws, location_distribution
 from .networks.orientation import decode_angle, snap_angle
+from .networks.runtime import OnnxCalls
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer, quarter_turns, turn_image
 from .robot import Robot, RobotReport, RobotState
 from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
@@ -235,6 +236,10 @@ class SynthConfig:
     # partner categories is drawn from the category module instead.
     owed_partners: tuple[str, ...] = ('coffee_table_has_seating', 'double_bed_has_nightstand')
     device: str = 'cpu'
+    # What runs the networks (``networks.runtime``): ``auto`` is onnxruntime on the CPU where
+    # it is installed (a quarter less time a room), else torch; ``torch`` or
+    # ``onnxruntime`` to choose. The rooms of the two are equal in distribution.
+    runtime: str = 'auto'
     # The catalog file (``scene-synth catalog build``) whose models insertion retrieves, in
     # place of the procedural ones of the categories it covers; None: the procedural
     # catalog. A path, so that batches can send it to workers (a ``catalog.Catalog`` object
@@ -261,6 +266,7 @@ class _Context:
     room: Room
     spec: RoomTypeSpec
     bundle: Bundle
+    calls: dict | OnnxCalls       # the bundle's networks as ``lockstep.ask`` runs them
     frame: Frame                  # the room's frame: what the category and location modules see
     grid: Frame                   # the location module's output grid
     floor_mask: np.ndarray        # (L, L) bool: pixel centres on the floor
@@ -310,9 +316,11 @@ class Synthesizer:
                                  f'the rules that owe one are {", ".join(groups.OWED_PARTNERS)}')
         try:
             self.device = resolve_device(self.config.device)
+            self.runtime = resolve_runtime(self.config.runtime, self.device)
         except ValueError as e:
             raise SynthesisError(str(e)) from None
         self._bundles: dict[str, Bundle] = {}
+        self._calls: dict[str, dict | OnnxCalls] = {}   # what ``ask`` gets, per room type
         # On the CPU the images are drawn, and the networks' weights laid out, channels-last:
         # oneDNN convolves 46-channel images so laid out 1.3-2.2x faster
         # (``benchmarks/batch_gain.py --channels-last``), and drawn that way they need no
@@ -334,7 +342,15 @@ class Synthesizer:
                 fold_batch_norms(net)
                 if self._channels_last:
                     net.to(memory_format=torch.channels_last)
+            networks = self._bundles[rt].networks
+            self._calls[rt] = OnnxCalls(networks) if self.runtime == 'onnxruntime' else networks
         return self._bundles[rt]
+
+    def calls(self, room_type: str) -> dict | OnnxCalls:
+        """The networks of ``room_type`` as synthesis runs them (``networks.runtime``): the
+        bundle's torch networks, or their ``OnnxCalls``."""
+        self.bundle(room_type)
+        return self._calls[resolve_room_type(room_type)]
 
     def load_all(self) -> None:
         """Load the bundle of every room type of the weights directory; ``BundleError``
@@ -380,7 +396,7 @@ class Synthesizer:
         for z in zones:
             door_mask |= shapely.contains_xy(z, centres[:, 0], centres[:, 1])
         return _Context(
-            room=room, spec=spec, bundle=bundle, frame=frame, grid=grid,
+            room=room, spec=spec, bundle=bundle, calls=self.calls(rt), frame=frame, grid=grid,
             floor_mask=floor_mask.reshape(n, n), door_mask=door_mask.reshape(n, n),
             centres=centres,
             floor=room.polygon.buffer(FLOOR_TOLERANCE, join_style='mitre'), zones=zones,
@@ -492,7 +508,7 @@ class Synthesizer:
             image, small = self._top_down(ctx, scene)
             counts = self._bag_of_categories(ctx, scene)
         with ctx.timed('category'):
-            category_logits = ask(ctx.bundle.networks, 'category', image, counts)[0][0]
+            category_logits = ask(ctx.calls, 'category', image, counts)[0][0]
         allowed = self._allowed_categories(ctx, scene, allow_stop)
         if only is not None:
             keep = torch.zeros_like(allowed)
@@ -507,7 +523,7 @@ class Synthesizer:
                 return None, 'stop'
             if location is None:
                 with ctx.timed('location'):
-                    logits, offsets = ask(ctx.bundle.networks, 'location', image)
+                    logits, offsets = ask(ctx.calls, 'location', image)
                     location = (logits[0], None if offsets is None
                                 else offsets[0].float().cpu().numpy())
             obj = self._insert_category(ctx, scene, c, location, small)
@@ -655,9 +671,8 @@ class Synthesizer:
             x = self._local_images(ctx, scene, points, [ctx.frame.yaw] * len(points))
         with ctx.timed('orientation'):
             cats = torch.full((len(points),), c, dtype=torch.long, device=self.device)
-            nets = ctx.bundle.networks
-            z = nets['orientation'].noise(len(points), ctx.gen, self.device)
-            out, snap_logits = ask(nets, 'orientation', x, cats, z)
+            z = ctx.bundle.networks['orientation'].noise(len(points), ctx.gen, self.device)
+            out, snap_logits = ask(ctx.calls, 'orientation', x, cats, z)
             theta = decode_angle(out, ctx.gen)
             snap = torch.sigmoid(snap_logits) > self.config.snap_threshold
             return [wrap_angle(ctx.frame.yaw + (snap_angle(th) if s else th))
@@ -671,9 +686,8 @@ class Synthesizer:
             x = self._local_images(ctx, scene, points, yaws)
         with ctx.timed('dimensions'):
             cats = torch.full((len(points),), c, dtype=torch.long, device=self.device)
-            nets = ctx.bundle.networks
-            z = nets['dimensions'].noise(len(points), ctx.gen, self.device)
-            log_dims, = ask(nets, 'dimensions', x, cats, z)
+            z = ctx.bundle.networks['dimensions'].noise(len(points), ctx.gen, self.device)
+            log_dims, = ask(ctx.calls, 'dimensions', x, cats, z)
             dims = torch.exp(log_dims).cpu().tolist()
         return [(d[0], d[1]) for d in dims]
 

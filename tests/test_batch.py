@@ -201,7 +201,10 @@ def test_batch_bad_input_is_one_sentence(cli, tiny_weights, tmp_path):
             (('--workers', 2), 'is for batches'),
             (('--lockstep', 4), 'is for batches'),
             (('--png',), 'needs a file name'),
-            (('-n', 2, '--out', d, '--room-type', 'kitchen'), 'unknown room type')]:
+            (('-n', 2, '--out', d, '--room-type', 'kitchen'), 'unknown room type'),
+            (('-n', 2, '--out', d, '--runtime', 'onnxruntime', '--device', 'cuda'),
+             'runs on the CPU, not on cuda' if torch.cuda.is_available()
+             else 'torch sees no CUDA device')]:
         proc = cli('generate', '--weights-dir', tiny_weights, *args, ok=False)
         assert proc.returncode == 2, (args, proc.stderr)
         assert words in proc.stderr and 'Traceback' not in proc.stderr, (args, proc.stderr)
@@ -216,6 +219,10 @@ def test_batch_bad_input_is_one_sentence(cli, tiny_weights, tmp_path):
     proc = cli(*batch(tiny_weights, '-n', 1, '--out', d, '--temperature', 0.5), ok=False)
     assert proc.returncode == 2 and 'holds a batch of other rooms' in proc.stderr
     assert 'location_temperature 0.8 there, 0.5 now' in proc.stderr
+    # Nor by another runtime: batch.json names the one auto chose (onnxruntime here).
+    assert json.loads((d / 'batch.json').read_text())['synthesis']['runtime'] == 'onnxruntime'
+    proc = cli(*batch(tiny_weights, '-n', 1, '--out', d, '--runtime', 'torch'), ok=False)
+    assert proc.returncode == 2 and "runtime 'onnxruntime' there, 'torch' now" in proc.stderr
     # A directory of shells drawn before first_shell (batch.json without its name) is not
     # resumed with first_shell's.
     described = json.loads((d / 'batch.json').read_text())

@@ -8,6 +8,7 @@ from pathlib import Path
 from ..categories import ROOM_TYPES
 from ..corpus import HELDOUT_SEED
 from ..errors import quoted
+from ..networks.config import RUNTIMES
 from .common import (
     WEIGHTS_DIR_HELP,
     UserError,
@@ -73,6 +74,9 @@ def _synthesis_options(c, out: bool = True, batch: bool = False) -> None:
     c.add_argument('--max-objects', type=int, help='cap on objects in the room (default 30)')
     c.add_argument('--weights-dir', help=WEIGHTS_DIR_HELP)
     c.add_argument('--device', choices=('cpu', 'cuda', 'auto'))
+    c.add_argument('--runtime', choices=RUNTIMES, help="what runs the networks (default "
+                   "auto: onnxruntime on the CPU where it is installed, else torch); the two "
+                   "give rooms equal in distribution, nearly all the same")
     c.add_argument('--catalog', help='a catalog of your own models (`scene-synth catalog '
                    'build`): their categories are furnished with them, the others with the '
                    'procedural models')
@@ -125,6 +129,8 @@ def _synth_config(args):
         cfg.max_objects = args.max_objects
     if getattr(args, 'device', None):
         cfg.device = args.device
+    if getattr(args, 'runtime', None):
+        cfg.runtime = args.runtime
     if hasattr(args, 'robot_radius'):
         cfg.robot = robot_from(args)
     if getattr(args, 'catalog', None):

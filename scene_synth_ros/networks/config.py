@@ -13,6 +13,8 @@ from typing import Any
 
 import yaml
 
+from ..errors import quoted
+
 
 @dataclass
 class EncoderConfig:
@@ -177,3 +179,33 @@ def resolve_device(name: str):
     if name not in ('cpu', 'cuda'):
         raise ValueError(f'unknown device {name!r}; expected cpu, cuda or auto')
     return torch.device(name)
+
+
+# What runs synthesis's forward passes (``networks/runtime.py``).
+RUNTIMES = ('auto', 'torch', 'onnxruntime')
+
+
+def onnxruntime_available() -> bool:
+    try:
+        import onnxruntime  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def resolve_runtime(runtime: str, device) -> str:
+    """``torch`` or ``onnxruntime`` for ``runtime`` (one of ``RUNTIMES``) on ``device`` (a
+    torch device), as ``runtime.py`` says; ValueError, one sentence, where that cannot be."""
+    if runtime not in RUNTIMES:
+        raise ValueError(f'no runtime {quoted(runtime)}; the runtimes are {", ".join(RUNTIMES)}')
+    if runtime == 'torch':
+        return runtime
+    if runtime == 'auto':
+        return 'onnxruntime' if device.type == 'cpu' and onnxruntime_available() else 'torch'
+    if device.type != 'cpu':
+        raise ValueError(f'the onnxruntime runtime runs on the CPU, not on {device.type}; '
+                         'use the torch runtime there')
+    if not onnxruntime_available():
+        raise ValueError('the onnxruntime runtime needs the onnxruntime package '
+                         '(pip install -r requirements.txt)')
+    return runtime
