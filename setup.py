@@ -37,7 +37,9 @@ setup(
     install_requires=['setuptools'],
     # Batches on a Ray cluster (``scene-synth generate -n N --ray``); the version is pinned
     # in requirements.txt, which ``make test`` installs.
-    extras_require={'ray': ['ray']},
+    # The CPU's forward passes in onnxruntime (scene_synth_ros/networks/runtime.py; without
+    # it synthesis runs them in torch); onnx is what torch's exporter writes with.
+    extras_require={'ray': ['ray'], 'onnxruntime': ['onnxruntime', 'onnx']},
     zip_safe=False,   # the weights are read as files
     maintainer='scene_synth_ros developers',
     maintainer_email='dev@scene-synth-ros.invalid',
