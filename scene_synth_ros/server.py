@@ -44,7 +44,7 @@ from .export import FORMATS as EXPORT_FORMATS
 from .export import UnknownFormat, parse_formats
 from .files import write_atomic
 from .markers import MARKER_STYLES
-from .networks.config import resolve_device
+from .networks.config import RUNTIMES, resolve_device
 from .robot import CLEARANCE_RANGE, RADIUS_RANGE, REACH_RANGE, Robot, RobotReport
 from .scene import PlacedObject, Scene
 from .schema import dump_scene, parse_room_layout
@@ -65,6 +65,7 @@ class ServerConfig:
     location_temperature: float = 0.8
     max_objects: int = 30
     device: str = 'auto'
+    runtime: str = 'auto'               # what runs the networks (networks/runtime.py)
     weights_dir: str = ''               # '' = the weights shipped in the package
     catalog_dir: str = ''               # '' = the procedural catalog; else FOLDER/catalog.json
     frame_id: str = 'map'
@@ -97,6 +98,9 @@ PARAMETERS: dict[str, tuple[str, Any, bool]] = {
                              (0.05, 5.0), False),
     'max_objects': ('most objects in one room', (1, 100), False),
     'device': ('torch device for the networks', DEVICES, False),
+    'runtime': ('what runs the networks: auto (onnxruntime on the CPU where it is installed, '
+                'else torch), torch or onnxruntime; their rooms are equal in distribution',
+                RUNTIMES, False),
     'weights_dir': ("directory of <room type>.pt bundles; '' = the shipped weights", None,
                     False),
     'catalog_dir': ('folder holding a catalog.json written by `scene-synth catalog build` '
@@ -334,7 +338,7 @@ class SceneServer:
                 setattr(config, f.name, check(f.name, getattr(config, f.name)))
         import torch
         torch.set_num_threads(config.torch_threads)
-        self._synth = self._load(config.weights_dir, config.device)
+        self._synth = self._load(config.weights_dir, config.device, config.runtime)
         for name in BY_WEIGHTS:
             setattr(config, name, check(name, getattr(config, name)))
         _check_weights_hold(config, self._synth)
@@ -361,9 +365,9 @@ class SceneServer:
 
     # ---- set-up and parameters ------------------------------------------------------------
     @staticmethod
-    def _load(weights_dir: str, device: str) -> Synthesizer:
+    def _load(weights_dir: str, device: str, runtime: str) -> Synthesizer:
         synth = Synthesizer(Path(weights_dir).expanduser() if weights_dir else None,
-                            SynthConfig(device=device))
+                            SynthConfig(device=device, runtime=runtime))
         synth.load_all()                   # fail now, naming the file, not at the first room
         return synth
 
@@ -376,12 +380,14 @@ class SceneServer:
                 raise ConfigError(f'{name} is read-only: set it when the node starts')
         new = replace(self.config, **checked)
         synth = None
-        if (new.weights_dir, new.device) != (self.config.weights_dir, self.config.device):
+        loaded = ('weights_dir', 'device', 'runtime')
+        changed = [n for n in loaded if getattr(new, n) != getattr(self.config, n)]
+        if changed:
             try:
-                synth = self._load(new.weights_dir, new.device)
+                synth = self._load(new.weights_dir, new.device, new.runtime)
             except SceneSynthError as e:
-                raise ConfigError(f'weights_dir {new.weights_dir!r} cannot be used: {e}') \
-                    from None
+                what = ', '.join(f'{n} {quoted(getattr(new, n))}' for n in changed)
+                raise ConfigError(f'{what} cannot be used: {e}') from None
         late = {name: check(name, value) for name, value in changes.items()
                 if name in BY_WEIGHTS}
         new = replace(new, **late)

@@ -164,7 +164,13 @@ def test_parameters_are_checked_and_applied(server):
         server.reconfigure({'marker_style': 'sphere'})
     with pytest.raises(ConfigError, match='weights_dir'):
         server.reconfigure({'weights_dir': '/nonexistent/weights'})
+    with pytest.raises(ConfigError, match='runtime must be one of auto, torch, onnxruntime'):
+        server.reconfigure({'runtime': 'tpu'})
     assert server.config.location_temperature == 0.8          # all or none
+    # Another runtime loads the networks again, as another device does.
+    assert server._synth.runtime == 'onnxruntime'
+    server.reconfigure({'runtime': 'torch'})
+    assert server._synth.runtime == 'torch' and server.config.runtime == 'torch'
     server.reconfigure({'room_type': 'office', 'wall_height': 3.0, 'max_objects': 1,
                         'seed': 40, 'auto_generate': True})
     assert server.submit_polygon([(0, 0, 0), (4, 0, 0), (4, 3, 0), (0, 3, 0)], 'map')

@@ -132,6 +132,7 @@ class OnnxCalls:
         options.inter_op_num_threads = 1
         options.execution_mode = onnxruntime.ExecutionMode.ORT_SEQUENTIAL
         options.log_severity_level = 3          # errors only: its warnings are about graphs
+        options.enable_cpu_mem_arena = False
         session = onnxruntime.InferenceSession(graph.getvalue(), options,
                                                providers=['CPUExecutionProvider'])
         offsets = module == 'location' and self.networks['location'].offset is not None
