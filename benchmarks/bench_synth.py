@@ -9,7 +9,7 @@ alone, for the wall time per room, the time per module and the peak memory.
 
     .venv/bin/python benchmarks/bench_synth.py [-n 500] [--corpus-rooms 2000]
         [--timing-rooms 100] [--room-type all] [--workers 2] [--device cpu|cuda]
-        [--runtime auto|torch|onnxruntime]
+        [--runtime auto|torch|onnxruntime] [--threads N]
 """
 import argparse
 from collections import Counter
@@ -132,7 +132,13 @@ def main():
                     help='where the timed rooms run their networks')
     ap.add_argument('--runtime', default='auto', choices=('auto', 'torch', 'onnxruntime'),
                     help='what runs the timed rooms\' networks')
+    ap.add_argument('--threads', type=int, default=None,
+                    help="torch's (and onnxruntime's) threads for the timed rooms "
+                    "(default: torch's own choice, one per core)")
     args = ap.parse_args()
+    if args.threads is not None:
+        import torch
+        torch.set_num_threads(args.threads)
     rts = list(ROOM_TYPES) if args.room_type == 'all' else [args.room_type]
     if args.n:
         quality(rts, args.n, args.corpus_rooms, args.workers, args.weights_dir)
