@@ -21,18 +21,7 @@ import time
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-
-def median_ms(fn, repeats: int = 30) -> float:
-    import torch
-    with torch.inference_mode():
-        for _ in range(3):
-            fn()
-        times = []
-        for _ in range(repeats):
-            t0 = time.perf_counter()
-            fn()
-            times.append(time.perf_counter() - t0)
-    return statistics.median(times) * 1000
+from batch_gain import median_ms  # noqa: E402  (this folder, the script's own)
 
 
 def calls(synths: dict, room_type: str, sizes: list[int]) -> None:
@@ -61,7 +50,7 @@ def calls(synths: dict, room_type: str, sizes: list[int]) -> None:
             for _ in range(3):
                 for name, synth in synths.items():
                     c = synth.calls(room_type)
-                    ms = median_ms(lambda c=c, a=a, module=module: forward(c, module, *a))
+                    ms = median_ms(lambda c=c, a=a, module=module: forward(c, module, *a), 30)
                     best[name] = min(best.get(name, ms), ms)
             t, o = best['torch'], best['onnxruntime']
             cells.append(f'{t:6.2f} -> {o:6.2f} x{t / o:4.2f}')
