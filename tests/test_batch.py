@@ -219,10 +219,14 @@ def test_batch_bad_input_is_one_sentence(cli, tiny_weights, tmp_path):
     proc = cli(*batch(tiny_weights, '-n', 1, '--out', d, '--temperature', 0.5), ok=False)
     assert proc.returncode == 2 and 'holds a batch of other rooms' in proc.stderr
     assert 'location_temperature 0.8 there, 0.5 now' in proc.stderr
-    # Nor by another runtime: batch.json names the one auto chose (onnxruntime here).
-    assert json.loads((d / 'batch.json').read_text())['synthesis']['runtime'] == 'onnxruntime'
-    proc = cli(*batch(tiny_weights, '-n', 1, '--out', d, '--runtime', 'torch'), ok=False)
-    assert proc.returncode == 2 and "runtime 'onnxruntime' there, 'torch' now" in proc.stderr
+    # Nor by another runtime: batch.json names the one auto chose, torch in lockstep (the
+    # default) and onnxruntime one room at a time.
+    assert json.loads((d / 'batch.json').read_text())['synthesis']['runtime'] == 'torch'
+    proc = cli(*batch(tiny_weights, '-n', 1, '--out', d, '--runtime', 'onnxruntime'), ok=False)
+    assert proc.returncode == 2 and "runtime 'torch' there, 'onnxruntime' now" in proc.stderr
+    one = tmp_path / 'one'
+    cli(*batch(tiny_weights, '-n', 1, '--workers', 1, '--lockstep', 1, '--out', one))
+    assert json.loads((one / 'batch.json').read_text())['synthesis']['runtime'] == 'onnxruntime'
     # A directory of shells drawn before first_shell (batch.json without its name) is not
     # resumed with first_shell's.
     described = json.loads((d / 'batch.json').read_text())
