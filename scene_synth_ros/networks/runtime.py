@@ -5,8 +5,9 @@ runs it, the one definition of what a call computes. On the CPU a call of one ro
 time is a batch of one through networks of 16-128 channels, which torch runs at the speed of
 its per-layer overhead, not of the arithmetic. ``OnnxCalls`` exports each call once, from
 ``forward`` and the bundle's folded networks, to an ONNX graph and runs it in an onnxruntime
-session: the location call of one bedroom takes 1.3-1.6 ms there against 2.6-3.6 ms in torch,
-and a whole bedroom about a quarter less time (``benchmarks/runtime_gain.py``). The graphs take
+session: at a batch of one a bedroom's calls take 1.3-2.4x less time there (the location
+call 2.1 against 4.8 ms on a slow day), and a whole bedroom 27-30 % less
+(``benchmarks/runtime_gain.py``). The graphs take
 images laid out channels-last, as synthesis draws them on the CPU, so no image is copied on
 the way in.
 
@@ -18,9 +19,10 @@ checks both), and the same seed gives the same room in either.
 
 onnxruntime's lead is overhead saved, so it shrinks as the batch grows: torch's oneDNN
 convolutions gain from a batch of four or more, onnxruntime's pass costs about the batch
-times one example's. Rooms in lockstep batch 8-32 examples, so a call of more examples than
-``ONNX_MAX_BATCH`` says is run by torch (on this CPU, ``benchmarks/runtime_gain.py --sizes
-1,2,3,4,6,8``, onnxruntime is ahead up to those sizes and behind beyond).
+times one example's. So a call of more examples than ``ONNX_MAX_BATCH`` says is run by torch
+(on this CPU, ``benchmarks/runtime_gain.py --sizes 1,2,3,4,6,8,16``, onnxruntime is ahead up
+to those sizes and level or behind beyond), and a batch of rooms in lockstep, whose calls
+are mostly larger, runs torch under ``auto`` (``batch._runtime_chosen``).
 
 ``config.resolve_runtime`` chooses: ``auto`` is onnxruntime on the CPU where it is installed
 (it is in ``requirements.txt``), torch elsewhere (CUDA, or no onnxruntime).
