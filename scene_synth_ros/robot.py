@@ -147,7 +147,6 @@ def kept(before: RobotState, now: RobotState, added: int) -> bool:
     return before.reached | {added} <= now.reached
 
 
-
 @dataclass(frozen=True)
 class RobotReport:
     """The promise measured on a room."""
