@@ -6,7 +6,7 @@ module, that were running (self). A room in lockstep runs in a greenlet of its o
 starts at its synthesis call, so the lockstep coordinator's share is that of the forward
 passes it serves.
 
-    .venv/bin/python benchmarks/profile_batch.py [-n 400] [--lockstep 16]
+    .venv/bin/python benchmarks/profile_batch.py [-n 400] [--lockstep 8]
         [--room-type bedroom] [--interval 0.002] [--top 40]
 
 Unlike cProfile, sampling leaves the speed of small Python functions alone; the shares are
@@ -34,7 +34,7 @@ def _where(code) -> str:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument('-n', type=int, default=400)
-    ap.add_argument('--lockstep', type=int, default=16)
+    ap.add_argument('--lockstep', type=int, default=8)
     ap.add_argument('--room-type', default='bedroom')
     ap.add_argument('--interval', type=float, default=0.002)
     ap.add_argument('--top', type=int, default=40)

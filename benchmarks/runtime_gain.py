@@ -2,9 +2,11 @@
 
     .venv/bin/python benchmarks/runtime_gain.py [-n 80] [--room-type bedroom]
                                                 [--sizes 1,16] [--threads 1]
+                                                [--onnx-max-batch B]
 
 First each network call of the room type's shipped bundle, as synthesis makes it (batch
-norms folded, images channels-last), on random images at each batch size: milliseconds per
+norms folded, images channels-last, for onnxruntime with the zero channels its graphs take),
+on random images at each batch size: milliseconds per
 pass in torch and in onnxruntime, the best of three medians of 30 passes, the two runtimes
 timed in turn. Then ``-n`` complete rooms from empty (the held-out shells the timing of
 ``bench_synth.py`` furnishes, the same seeds), each made by both runtimes one after the other
@@ -25,6 +27,7 @@ from batch_gain import median_ms  # noqa: E402  (this folder, the script's own)
 
 
 def calls(synths: dict, room_type: str, sizes: list[int]) -> None:
+    import numpy as np
     import torch
 
     from scene_synth_ros.categories import room_spec
@@ -38,18 +41,25 @@ def calls(synths: dict, room_type: str, sizes: list[int]) -> None:
     print(f'{"batch":>5s} ' + ' '.join(f'{m:>22s}' for m in
                                        ('category', 'location', 'orientation', 'dimensions')))
     for b in sizes:
-        image = torch.rand(b, FIRST_CATEGORY + k, n, n).round().contiguous(
-            memory_format=torch.channels_last)
         cats = torch.zeros(b, dtype=torch.long)
         z = torch.randn(b, nets['orientation'].latent)
-        args = {'category': (image, torch.zeros(b, k)), 'location': (image,),
-                'orientation': (image, cats, z), 'dimensions': (image, cats, z)}
+        # Each runtime's images as synthesis draws them: for onnxruntime, with its zero
+        # channels (``runtime.padded_channels``).
+        drawn = torch.rand(b, FIRST_CATEGORY + k, n, n).round()
+        images = {}
+        for name, synth in synths.items():
+            image = torch.from_numpy(np.stack([synth._image(n, FIRST_CATEGORY + k)
+                                               for _ in range(b)]))
+            image[:, :FIRST_CATEGORY + k] = drawn
+            images[name] = image.contiguous(memory_format=torch.channels_last)
         cells = []
-        for module, a in args.items():
+        for module in ('category', 'location', 'orientation', 'dimensions'):
             best = {}
             for _ in range(3):
                 for name, synth in synths.items():
-                    c = synth.calls(room_type)
+                    c, image = synth.calls(room_type), images[name]
+                    a = {'category': (image, torch.zeros(b, k)), 'location': (image,),
+                         'orientation': (image, cats, z), 'dimensions': (image, cats, z)}[module]
                     ms = median_ms(lambda c=c, a=a, module=module: forward(c, module, *a), 30)
                     best[name] = min(best.get(name, ms), ms)
             t, o = best['torch'], best['onnxruntime']
@@ -96,9 +106,15 @@ def main() -> int:
     ap.add_argument('--sizes', default='1,16', help='batch sizes of the passes timed')
     ap.add_argument('--threads', type=int, default=1)
     ap.add_argument('--weights-dir', default=None)
+    ap.add_argument('--onnx-max-batch', type=int, default=None,
+                    help='let onnxruntime run batches up to this size (default: '
+                    'runtime.ONNX_MAX_BATCH), to measure where it stops gaining')
     args = ap.parse_args()
     import torch
     torch.set_num_threads(args.threads)
+    if args.onnx_max_batch is not None:
+        from scene_synth_ros.networks import runtime
+        runtime.ONNX_MAX_BATCH = args.onnx_max_batch
     from scene_synth_ros.synth import SynthConfig, Synthesizer
     synths = {name: Synthesizer(args.weights_dir, SynthConfig(runtime=name))
               for name in ('torch', 'onnxruntime')}

@@ -630,9 +630,10 @@ class BatchConfig:
     png: bool = False
     exports: tuple[str, ...] = ()
     ray: str | None = None          # None: worker processes; 'local' or an address: Ray
-    # Rooms furnished together (``lockstep``; 1: one at a time): 16 made 3 % more rooms a
-    # second than 8 on two workers, at 395 MB a worker (``benchmarks/bench_batch.py``).
-    lockstep: int = 16
+    # Rooms furnished together (``lockstep``; 1: one at a time): with the networks in
+    # onnxruntime 8 made 2 % more rooms a second than 16 on two workers, at 415 MB a worker
+    # against 542-561 (``benchmarks/bench_batch.py --runtime torch onnxruntime``).
+    lockstep: int = 8
     progress: bool = True           # a progress bar on stderr
 
 
@@ -730,16 +731,11 @@ class Manifest:
 def _runtime_chosen(cfg: BatchConfig) -> BatchConfig:
     """``cfg`` with the runtime ``auto`` chooses here: the batch's, named in batch.json and
     sent to the workers, so that a directory furnished by onnxruntime is not resumed, nor its
-    rooms made, by torch on a machine without it. In lockstep ``auto`` is torch: there the
-    passes are batched, torch's convolutions are as fast, and onnxruntime holds 80-90 MB
-    more a worker (``benchmarks/bench_batch.py --runtime torch onnxruntime``: 2 workers, 16
-    in lockstep, 17.06 against 16.46 rooms/s, 409-415 against 495-497 MB; one room at a
-    time 12.00 against 15.72 rooms/s)."""
-    runtime = cfg.synthesis.runtime
-    if runtime == 'auto' and cfg.lockstep > 1:
-        runtime = 'torch'
+    rooms made, by torch on a machine without it. On the CPU ``auto`` is onnxruntime in
+    lockstep too (``benchmarks/bench_batch.py --runtime torch onnxruntime``: 2 workers, 8 in
+    lockstep, 19.32 against 15.95 rooms/s)."""
     try:
-        runtime = resolve_runtime(runtime, resolve_device(cfg.synthesis.device))
+        runtime = resolve_runtime(cfg.synthesis.runtime, resolve_device(cfg.synthesis.device))
     except ValueError as e:
         raise BatchError(str(e)) from None
     return replace(cfg, synthesis=replace(cfg.synthesis, runtime=runtime))

@@ -69,7 +69,7 @@ from .networks.category import category_probabilities
 from .networks.config import resolve_device, resolve_runtime
 from .networks.location import LocationDraws, location_distribution
 from .networks.orientation import decode_angle, snap_angle
-from .networks.runtime import OnnxCalls
+from .networks.runtime import OnnxCalls, padded_channels
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer, quarter_turns, turn_image
 from .robot import Robot, RobotReport, RobotState
 from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
@@ -361,12 +361,16 @@ class Synthesizer:
             self.bundle(rt)
 
     def _image(self, n: int, c: int, batch: int | None = None) -> np.ndarray:
-        """An uninitialised float32 image of ``c`` channels, ``n`` x ``n`` (a batch of them),
-        shaped channels-first for the renderer, laid out as the networks take it."""
+        """An image of ``c`` channels, ``n`` x ``n`` (a batch of them), shaped channels-first
+        for the renderer, laid out as the networks take it: the renderer draws the first
+        ``c`` channels; for onnxruntime zero channels follow, up to the graphs' count
+        (``runtime.padded_channels``), so that the graphs take it as it is."""
         lead = () if batch is None else (batch,)
         if not self._channels_last:
             return np.empty(lead + (c, n, n), dtype=np.float32)
-        image = np.empty(lead + (n, n, c), dtype=np.float32)
+        p = padded_channels(c) if self.runtime == 'onnxruntime' else c
+        image = np.empty(lead + (n, n, p), dtype=np.float32)
+        image[..., c:] = 0.0
         return np.moveaxis(image, -1, -3)
 
     def _renderer(self, resolution: int) -> TopDownRenderer:
@@ -536,12 +540,13 @@ class Synthesizer:
         """The scene image the category and location modules see (a batch of one), and the
         scene on the location grid, for the location mask."""
         n, c = ctx.frame.resolution, FIRST_CATEGORY + len(ctx.spec.names)
-        image = self._renderer(n).render(scene, ctx.frame, out=self._image(n, c))
+        full = self._image(n, c)
+        image = self._renderer(n).render(scene, ctx.frame, out=full[:c])
         if ctx.grid.resolution == ctx.frame.resolution:
             small = image
         else:
             small = self._renderer(ctx.grid.resolution).render(scene, ctx.grid)
-        return torch.from_numpy(image)[None].to(self.device), small
+        return torch.from_numpy(full)[None].to(self.device), small
 
     def _bag_of_categories(self, ctx: _Context, scene: Scene) -> torch.Tensor:
         """How many objects of each category the room holds (a batch of one)."""
@@ -657,7 +662,7 @@ class Synthesizer:
                 continue
             # A crop's frame is seen once: not cached, so that the rooms' own frames stay
             # (in lockstep, 16 rooms' crops pushed them out of the cache at every step).
-            r.render(scene, Frame.local(ctx.room.room_type, pt, yaw, n), out=batch[k],
+            r.render(scene, Frame.local(ctx.room.room_type, pt, yaw, n), out=batch[k, :c],
                      keep=False)
         ctx.crops_held = these if all(yaw == ctx.frame.yaw for yaw in yaws) else None
         return torch.from_numpy(batch).to(self.device)

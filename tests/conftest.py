@@ -30,6 +30,18 @@ def tiny_config(steps: int = 4) -> PipelineConfig:
                           orientation=sched, snap=sched, dimensions=sched))
 
 
+@pytest.fixture(scope='session', autouse=True)
+def graph_cache(tmp_path_factory) -> Path:
+    """The exported onnxruntime graphs of this run (``runtime.graph_cache_dir``) go to a
+    directory of its own, for this process and the processes it starts: the suite neither
+    reads a user's cache nor leaves files in it, and exports every graph once."""
+    from scene_synth_ros.networks.runtime import CACHE_ENV
+    path = tmp_path_factory.mktemp('graphs')
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv(CACHE_ENV, str(path))
+        yield path
+
+
 @pytest.fixture(autouse=True)
 def paper_room_types():
     """Every test starts and ends with the paper's room types only: a test that loads

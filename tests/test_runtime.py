@@ -4,6 +4,8 @@ laid out, with and without location offsets, and leaves larger batches to torch;
 are torch's but where those digits tip a draw, and the same seed gives the same room;
 ``auto`` chooses it on the CPU, torch where it cannot run; a runtime that cannot be is one
 sentence."""
+import copy
+import os
 import sys
 
 import pytest
@@ -14,8 +16,18 @@ from scene_synth_ros.categories import room_spec
 from scene_synth_ros.corpus import HELDOUT_SEED
 from scene_synth_ros.corpus.generate import empty_room
 from scene_synth_ros.geometry import check_scene
+from scene_synth_ros.networks import runtime
 from scene_synth_ros.networks.config import resolve_runtime
-from scene_synth_ros.networks.runtime import ONNX_MAX_BATCH, OnnxCalls, forward
+from scene_synth_ros.networks.runtime import (
+    CACHE_ENV,
+    MODULE_CALLS,
+    ONNX_MAX_BATCH,
+    OnnxCalls,
+    forward,
+    graph_cache_dir,
+    graph_key,
+    padded_channels,
+)
 from scene_synth_ros.render import FIRST_CATEGORY
 from scene_synth_ros.synth import SynthConfig, SynthesisError, Synthesizer
 
@@ -75,7 +87,7 @@ def test_onnxruntime_answers_every_call_as_torch_does(synth, tiny_weights, weigh
         offsets = forward(nets, 'location', *calls_of(s, room_type, 1, True, 0)[1][1])[1]
         assert (offsets is not None) == (weights == 'tiny')
         # A batch larger than onnxruntime's limit is torch's to the last digit.
-        for module, args in calls_of(s, room_type, max(ONNX_MAX_BATCH.values()) + 1, True, 9):
+        for module, args in calls_of(s, room_type, ONNX_MAX_BATCH + 1, True, 9):
             with torch.inference_mode():
                 got, want = calls(module, *args), forward(nets, module, *args)
             assert all(a is b is None or torch.equal(a, b)
@@ -102,8 +114,8 @@ def test_rooms_of_onnxruntime_are_torchs_but_for_the_last_digits(synth):
     assert same >= 14, f'{same} of 16 rooms the same'
     for r in ours:
         assert check_scene(r.scene).ok and r.robot.kept and r.scene.objects
-    # The same seed gives the same room, in a synthesizer that exports its graphs anew, and
-    # in lockstep with other rooms.
+    # The same seed gives the same room, in a synthesizer that reads its graphs from the
+    # cache, and in lockstep with other rooms.
     again = Synthesizer(config=SynthConfig(runtime='onnxruntime'))
     assert objects(again.generate(rooms[1], seed=1).scene) == objects(ours[1].scene)
     grouped = lockstep.run([lambda r=r, i=i: synth.generate(r, seed=i)
@@ -133,3 +145,116 @@ def test_auto_is_onnxruntime_on_the_cpu_and_torch_where_it_cannot_run(monkeypatc
     assert Synthesizer().runtime == 'torch'
     with pytest.raises(SynthesisError, match='needs the onnxruntime package'):
         Synthesizer(config=SynthConfig(runtime='onnxruntime'))
+
+
+def test_graphs_are_kept_on_disk_and_read_back_without_an_export(synth, tmp_path, monkeypatch):
+    nets = synth.bundle('bedroom').networks
+    args = calls_of(synth, 'bedroom', 1, True, seed=3)
+    first = OnnxCalls(nets, cache_dir=tmp_path)
+    with torch.inference_mode():
+        want = {module: first(module, *a) for module, a in args}
+    assert first.loaded == [] and first.exported == tuple(sorted(MODULE_CALLS))
+    kept = sorted(p.name.split('-')[0] for p in tmp_path.glob('*.onnx'))
+    assert kept == sorted(MODULE_CALLS) and not list(tmp_path.glob('.*'))
+
+    # Another process's calls (a fresh OnnxCalls) read the graphs back: exporting fails
+    # here, and every answer is the very one the exported graph gave.
+    def no_export(*a, **k):
+        raise AssertionError('exported again')
+    monkeypatch.setattr(torch.onnx, 'export', no_export)
+    again = OnnxCalls(nets, cache_dir=tmp_path)
+    with torch.inference_mode():
+        for module, a in args:
+            assert all(torch.equal(x, y) for x, y in zip(again(module, *a), want[module],
+                                                          strict=True) if y is not None)
+    assert sorted(again.loaded) == sorted(MODULE_CALLS)
+    monkeypatch.undo()
+
+    # A damaged graph is exported again and replaced; its answers are unchanged.
+    damaged = next(tmp_path.glob('location-*.onnx'))
+    damaged.write_bytes(b'not a graph' * 100)
+    third = OnnxCalls(nets, cache_dir=tmp_path)
+    with torch.inference_mode():
+        got = third('location', *args[1][1])
+    assert 'location' not in third.loaded and torch.equal(got[0], want['location'][0])
+    assert damaged.read_bytes()[:20] != b'not a graph' * 2
+
+    # A cache that cannot be written (its directory is a file) costs only the export.
+    blocked = tmp_path / 'a file'
+    blocked.write_text('x')
+    fourth = OnnxCalls(nets, cache_dir=blocked / 'graphs')
+    with torch.inference_mode():
+        assert torch.equal(fourth('dimensions', *args[3][1])[0], want['dimensions'][0])
+    assert blocked.read_text() == 'x'
+
+    # Beyond CACHE_GRAPHS the least recently used graphs go; a graph read back was used.
+    monkeypatch.setattr(runtime, 'CACHE_GRAPHS', 2)
+    small = tmp_path / 'small'
+    small.mkdir()
+    for k in (1, 2):
+        (small / f'stale-{k}.onnx').write_bytes(b'old')
+        os.utime(small / f'stale-{k}.onnx', (1000 * k, 1000 * k))
+    with torch.inference_mode():
+        OnnxCalls(nets, cache_dir=small)('dimensions', *args[3][1])
+    dims = next(small.glob('dimensions-*.onnx'))
+    assert sorted(p.name for p in small.glob('*.onnx')) == sorted([dims.name, 'stale-2.onnx'])
+    os.utime(dims, (500, 500))
+    reader = OnnxCalls(nets, cache_dir=small)
+    with torch.inference_mode():
+        reader('dimensions', *args[3][1])
+        reader('category', *args[0][1])
+    assert reader.loaded == ['dimensions']
+    assert {p.name.split('-')[0] for p in small.glob('*.onnx')} == {'dimensions', 'category'}
+
+
+def test_a_graph_is_named_by_the_weights_and_the_inputs(synth):
+    nets = synth.bundle('bedroom').networks
+    image = torch.zeros(1, 64, 64, 48)
+    key = graph_key(nets, 'location', (image,))
+    assert key == graph_key(nets, 'location', (image.clone(),))
+    assert key != graph_key(nets, 'location', (torch.zeros(1, 32, 32, 48),))
+    assert key != graph_key(synth.bundle('bathroom').networks, 'location', (image,))
+    # One weight changed by a little: another graph. Only the networks a call runs count.
+    changed = {name: copy.deepcopy(net) if name == 'location' else net
+               for name, net in nets.items()}
+    with torch.no_grad():
+        weight = next(changed['location'].parameters())
+        weight[(0,) * weight.dim()] += 1e-6
+    assert key != graph_key(changed, 'location', (image,))
+    assert (graph_key(nets, 'category', (image, torch.zeros(1, 3)))
+            == graph_key(changed, 'category', (image, torch.zeros(1, 3))))
+
+
+def test_the_cache_directory_follows_the_environment(monkeypatch, tmp_path):
+    monkeypatch.setenv(CACHE_ENV, 'off')
+    assert graph_cache_dir() is None
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path / 'mine'))
+    assert graph_cache_dir() == tmp_path / 'mine'
+    monkeypatch.delenv(CACHE_ENV)
+    monkeypatch.setenv('XDG_CACHE_HOME', str(tmp_path / 'xdg'))
+    assert graph_cache_dir() == tmp_path / 'xdg' / 'scene_synth_ros' / 'onnx'
+    monkeypatch.delenv('XDG_CACHE_HOME')
+    monkeypatch.setenv('HOME', str(tmp_path / 'home'))
+    assert graph_cache_dir() == tmp_path / 'home' / '.cache' / 'scene_synth_ros' / 'onnx'
+
+
+def test_images_drawn_with_zero_channels_are_taken_as_they_are(synth):
+    calls = synth.calls('bedroom')
+    c = calls.channels
+    assert c == FIRST_CATEGORY + len(room_spec('bedroom').names)
+    assert calls.image_channels == padded_channels(c) and calls.image_channels % 16 == 0
+    # What the synthesizer draws for onnxruntime: the zero channels already there.
+    image = synth._image(64, c)
+    assert image.shape == (calls.image_channels, 64, 64)
+    assert not image[c:].any()
+    module, args = calls_of(synth, 'bedroom', 1, True, seed=5)[1]
+    image[:c] = args[0][0].numpy()
+    drawn = torch.from_numpy(image)[None]
+    assert calls._image(drawn).base is not None          # no copy: a view of the drawing
+    with torch.inference_mode():
+        a, b = calls(module, drawn)[0], calls(module, *args)[0]
+    assert torch.equal(a, b)
+    with pytest.raises(ValueError, match='an image of 40 channels for networks that take'):
+        calls(module, torch.zeros(1, 40, 64, 64))
+    # torch draws the channels the networks take, no more.
+    assert Synthesizer(config=SynthConfig(runtime='torch'))._image(64, c).shape[0] == c

@@ -105,7 +105,7 @@ def _batch_options(c, layouts: bool) -> None:
     g.add_argument('--workers', type=int, help='worker processes, one torch thread each '
                    '(default: one per core; with --ray, one per CPU of the cluster)')
     g.add_argument('--lockstep', type=int, metavar='R', help='rooms furnished together by '
-                   "a worker, each network's pass batched across them (default 16; 1: one at a "
+                   "a worker, each network's pass batched across them (default 8; 1: one at a "
                    'time); part of what the batch is, like --seed')
     g.add_argument('--ray', nargs='?', const='local', metavar='ADDRESS',
                    help='furnish on Ray actors: with no ADDRESS a Ray started on this machine '
