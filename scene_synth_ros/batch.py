@@ -631,8 +631,8 @@ class BatchConfig:
     exports: tuple[str, ...] = ()
     ray: str | None = None          # None: worker processes; 'local' or an address: Ray
     # Rooms furnished together (``lockstep``; 1: one at a time): with the networks in
-    # onnxruntime 8 made 2 % more rooms a second than 16 on two workers, at 415 MB a worker
-    # against 542-561 (``benchmarks/bench_batch.py --runtime torch onnxruntime``).
+    # onnxruntime 8 made 1-2 % more rooms a second than 16 on two workers, at 413-426 MB a
+    # worker against 542-561 (``benchmarks/bench_batch.py --runtime torch onnxruntime``).
     lockstep: int = 8
     progress: bool = True           # a progress bar on stderr
 
@@ -733,7 +733,7 @@ def _runtime_chosen(cfg: BatchConfig) -> BatchConfig:
     sent to the workers, so that a directory furnished by onnxruntime is not resumed, nor its
     rooms made, by torch on a machine without it. On the CPU ``auto`` is onnxruntime in
     lockstep too (``benchmarks/bench_batch.py --runtime torch onnxruntime``: 2 workers, 8 in
-    lockstep, 19.32 against 15.95 rooms/s)."""
+    lockstep, 18.17 / 19.32 against 14.60 / 15.95 rooms/s in two runs)."""
     try:
         runtime = resolve_runtime(cfg.synthesis.runtime, resolve_device(cfg.synthesis.device))
     except ValueError as e:

@@ -23,8 +23,8 @@ checks both), and the same seed gives the same room in either.
 
 onnxruntime's lead is overhead saved, so it shrinks as the batch grows, and beyond
 ``ONNX_MAX_BATCH`` examples a call is run by torch (``benchmarks/runtime_gain.py --sizes
-1,4,8,16,24,32,48,64 --onnx-max-batch 64`` on this CPU: onnxruntime 1.1x ahead at 24, level
-at 32, behind from 48). So batches of rooms in lockstep (8 by default, ``batch``) run
+1,2,3,4,8,16,24,32,48,64 --onnx-max-batch 64`` on this CPU: onnxruntime 1.07-1.16x ahead at
+24; at 32 the location call 0.71x, from 48 every call but the category call behind). So batches of rooms in lockstep (8 by default, ``batch``) run
 onnxruntime too, with every call of the rooms under way in one pass.
 
 ``config.resolve_runtime`` chooses: ``auto`` is onnxruntime on the CPU where it is installed
