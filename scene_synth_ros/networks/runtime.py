@@ -24,8 +24,8 @@ checks both), and the same seed gives the same room in either.
 onnxruntime's lead is overhead saved, so it shrinks as the batch grows, and beyond
 ``ONNX_MAX_BATCH`` examples a call is run by torch (``benchmarks/runtime_gain.py --sizes
 1,2,3,4,8,16,24,32,48,64 --onnx-max-batch 64`` on this CPU: onnxruntime 1.07-1.16x ahead at
-24; at 32 the location call 0.71x, from 48 every call but the category call behind). So batches of rooms in lockstep (8 by default, ``batch``) run
-onnxruntime too, with every call of the rooms under way in one pass.
+24; at 32 the location call 0.71x, from 48 every call but the category call behind). So
+batches of rooms in lockstep (8 by default, ``batch``) run onnxruntime too.
 
 ``config.resolve_runtime`` chooses: ``auto`` is onnxruntime on the CPU where it is installed
 (it is in ``requirements.txt``), torch elsewhere (CUDA, or no onnxruntime).
@@ -349,8 +349,7 @@ def _session(graph: bytes, module: str):
     options.enable_cpu_mem_arena = False
     options.add_session_config_entry('session.intra_op.allow_spinning', '0')
     # Where several networks see one image, common subexpression elimination would merge
-    # their stems' turns again (``_turn_per_stem``); elsewhere it is kept (without it the
-    # location call took a quarter longer).
+    # their stems' turns again (``_turn_per_stem``); elsewhere onnxruntime's default stays.
     disabled = ['CommonSubexpressionElimination'] if len(CALL_NETWORKS[module]) > 1 else []
     return onnxruntime.InferenceSession(graph, options, providers=['CPUExecutionProvider'],
                                         disabled_optimizers=disabled)
