@@ -353,12 +353,34 @@ class Synthesizer:
         return self._calls[resolve_room_type(room_type)]
 
     def load_all(self) -> None:
-        """Load the bundle of every room type of the weights directory; ``BundleError``
-        names a bad file, or says there is none."""
+        """Load the bundle of every room type of the weights directory and ready its network
+        calls (``prepare``), so that no room pays for either; ``BundleError`` names a bad
+        file, or says there is none."""
         if not self.room_types:
             raise BundleError(f'{self.weights_dir}: no weights bundles (<room type>.pt) there')
         for rt in self.room_types:
-            self.bundle(rt)
+            self.prepare(rt)
+
+    def prepare(self, room_type: str) -> None:
+        """Load ``room_type``'s bundle and, in onnxruntime, have each of its network calls
+        exported, or read from the cache, and in a session (``runtime.OnnxCalls``): one pass
+        of each on an empty image, which draws nothing from any seed."""
+        bundle = self.bundle(room_type)
+        calls = self.calls(room_type)
+        if not isinstance(calls, OnnxCalls):
+            return
+        n = bundle.config.model.resolution
+        c = FIRST_CATEGORY + len(room_spec(bundle.room_type).names)
+        drawn = self._image(n, c)
+        drawn[:c] = 0.0
+        image = torch.from_numpy(drawn)[None]
+        cats = torch.zeros(1, dtype=torch.long)
+        nets = bundle.networks
+        with torch.inference_mode():
+            calls('category', image, torch.zeros(1, c - FIRST_CATEGORY))
+            calls('location', image)
+            for module in ('orientation', 'dimensions'):
+                calls(module, image, cats, torch.zeros(1, nets[module].latent))
 
     def _image(self, n: int, c: int, batch: int | None = None) -> np.ndarray:
         """An image of ``c`` channels, ``n`` x ``n`` (a batch of them), shaped channels-first

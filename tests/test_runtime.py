@@ -258,3 +258,21 @@ def test_images_drawn_with_zero_channels_are_taken_as_they_are(synth):
         calls(module, torch.zeros(1, 40, 64, 64))
     # torch draws the channels the networks take, no more.
     assert Synthesizer(config=SynthConfig(runtime='torch'))._image(64, c).shape[0] == c
+
+
+def test_loading_every_bundle_readies_every_call(tiny_weights, one_thread):
+    # The node and the evaluation load every bundle before their first room: in onnxruntime
+    # that also exports (or reads back) each call's graph, so no room pays for it, and it
+    # changes no room.
+    ready = Synthesizer(tiny_weights, SynthConfig(runtime='onnxruntime'))
+    ready.load_all()
+    for room_type in ready.room_types:
+        assert ready.calls(room_type).exported == tuple(sorted(MODULE_CALLS))
+    fresh = Synthesizer(tiny_weights, SynthConfig(runtime='onnxruntime'))
+    room = empty_room('bedroom', HELDOUT_SEED, 3)
+    a, b = ready.generate(room, seed=3).scene, fresh.generate(room, seed=3).scene
+    assert [(o.category, o.position, o.yaw) for o in a.objects] == \
+        [(o.category, o.position, o.yaw) for o in b.objects]
+    by_torch = Synthesizer(tiny_weights, SynthConfig(runtime='torch'))
+    by_torch.load_all()
+    assert not isinstance(by_torch.calls('bedroom'), OnnxCalls)
