@@ -99,10 +99,13 @@ def graph_cache_dir() -> Path | None:
 
 @lru_cache(maxsize=1)
 def _networks_code_hash() -> str:
-    """A hash of this package's network code (the directory of this module): a graph
-    exported by other code is not this code's graph, whatever the weights."""
-    h = hashlib.sha256()
-    for path in sorted(Path(__file__).resolve().parent.glob('*.py')):
+    """A hash of this package's version and network code (the directory of this module,
+    sources or, where an install kept only those, compiled files): a graph exported by
+    other code is not this code's graph, whatever the weights."""
+    from .. import __version__
+    h = hashlib.sha256(__version__.encode() + b'\0')
+    here = Path(__file__).resolve().parent
+    for path in sorted(here.glob('*.py')) or sorted(here.glob('*.pyc')):
         h.update(path.name.encode() + b'\0' + path.read_bytes() + b'\0')
     return h.hexdigest()
 
