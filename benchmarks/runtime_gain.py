@@ -48,8 +48,9 @@ def calls(synths: dict, room_type: str, sizes: list[int]) -> None:
         drawn = torch.rand(b, FIRST_CATEGORY + k, n, n).round()
         images = {}
         for name, synth in synths.items():
-            image = torch.from_numpy(np.stack([synth._image(n, FIRST_CATEGORY + k)
-                                               for _ in range(b)]))
+            image = torch.from_numpy(np.stack([
+                synth._image(n, FIRST_CATEGORY + k, calls=synth.calls(room_type))
+                for _ in range(b)]))
             image[:, :FIRST_CATEGORY + k] = drawn
             images[name] = image.contiguous(memory_format=torch.channels_last)
         cells = []

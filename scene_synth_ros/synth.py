@@ -46,7 +46,7 @@ import torch
 
 from . import catalog, robot
 from .categories import RoomTypeSpec, resolve_room_type, room_spec
-from .errors import SceneSynthError, UnknownCategory, quoted
+from .errors import SceneSynthError, UnknownCategory, quoted, sentence
 from .evaluation.design_rules import access, groups, walls
 from .geometry import (
     FLOOR_TOLERANCE,
@@ -364,33 +364,44 @@ class Synthesizer:
     def prepare(self, room_type: str) -> None:
         """Load ``room_type``'s bundle and, in onnxruntime, have each of its network calls
         exported, or read from the cache, and in a session (``runtime.OnnxCalls``): one pass
-        of each on an empty image, which draws nothing from any seed."""
+        of each on an empty image, which draws nothing from any seed. Networks onnxruntime
+        cannot run are torch's under ``auto``; asked for by name, that is a SynthesisError."""
         bundle = self.bundle(room_type)
         calls = self.calls(room_type)
         if not isinstance(calls, OnnxCalls):
             return
         n = bundle.config.model.resolution
         c = FIRST_CATEGORY + len(room_spec(bundle.room_type).names)
-        drawn = self._image(n, c)
+        drawn = self._image(n, c, calls=calls)
         drawn[:c] = 0.0
         image = torch.from_numpy(drawn)[None]
         cats = torch.zeros(1, dtype=torch.long)
         nets = bundle.networks
-        with torch.inference_mode():
-            calls('category', image, torch.zeros(1, c - FIRST_CATEGORY))
-            calls('location', image)
-            for module in ('orientation', 'dimensions'):
-                calls(module, image, cats, torch.zeros(1, nets[module].latent))
+        module = 'category'
+        try:
+            with torch.inference_mode():
+                calls(module, image, torch.zeros(1, c - FIRST_CATEGORY))
+                module = 'location'
+                calls(module, image)
+                for module in ('orientation', 'dimensions'):
+                    calls(module, image, cats, torch.zeros(1, nets[module].latent))
+        except Exception as e:   # whatever the exporter or onnxruntime raised
+            if self.config.runtime == 'onnxruntime':
+                raise SynthesisError(sentence(
+                    f'onnxruntime cannot run the {bundle.room_type} networks\' {module} call '
+                    f'({type(e).__name__}: {sentence(e, 160)}); runtime torch runs them')
+                ) from None
+            self._calls[bundle.room_type] = nets
 
-    def _image(self, n: int, c: int, batch: int | None = None) -> np.ndarray:
+    def _image(self, n: int, c: int, batch: int | None = None, calls=None) -> np.ndarray:
         """An image of ``c`` channels, ``n`` x ``n`` (a batch of them), shaped channels-first
         for the renderer, laid out as the networks take it: the renderer draws the first
-        ``c`` channels; for onnxruntime zero channels follow, up to the graphs' count
-        (``runtime.padded_channels``), so that the graphs take it as it is."""
+        ``c`` channels; for ``calls`` run by onnxruntime zero channels follow, up to the
+        graphs' count (``runtime.padded_channels``), so that the graphs take it as it is."""
         lead = () if batch is None else (batch,)
         if not self._channels_last:
             return np.empty(lead + (c, n, n), dtype=np.float32)
-        p = padded_channels(c) if self.runtime == 'onnxruntime' else c
+        p = padded_channels(c) if isinstance(calls, OnnxCalls) else c
         image = np.empty(lead + (n, n, p), dtype=np.float32)
         image[..., c:] = 0.0
         return np.moveaxis(image, -1, -3)
@@ -562,7 +573,7 @@ class Synthesizer:
         """The scene image the category and location modules see (a batch of one), and the
         scene on the location grid, for the location mask."""
         n, c = ctx.frame.resolution, FIRST_CATEGORY + len(ctx.spec.names)
-        full = self._image(n, c)
+        full = self._image(n, c, calls=ctx.calls)
         image = self._renderer(n).render(scene, ctx.frame, out=full[:c])
         if ctx.grid.resolution == ctx.frame.resolution:
             small = image
@@ -669,7 +680,7 @@ class Synthesizer:
         # crop cost page faults and a copy into the batch). The networks read it before the
         # next batch is drawn; on a GPU ``to`` copies it anyway.
         if ctx.crops is None or ctx.crops.shape[0] < len(points):
-            ctx.crops = self._image(n, c, len(points))
+            ctx.crops = self._image(n, c, len(points), ctx.calls)
         batch = ctx.crops[:len(points)]
         # The orientation module's crops (at the room's yaw) are still in the buffer when
         # the dimensions module asks for crops of the same points: one at a yaw a quarter

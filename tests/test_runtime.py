@@ -244,7 +244,7 @@ def test_images_drawn_with_zero_channels_are_taken_as_they_are(synth):
     assert c == FIRST_CATEGORY + len(room_spec('bedroom').names)
     assert calls.image_channels == padded_channels(c) and calls.image_channels % 16 == 0
     # What the synthesizer draws for onnxruntime: the zero channels already there.
-    image = synth._image(64, c)
+    image = synth._image(64, c, calls=calls)
     assert image.shape == (calls.image_channels, 64, 64)
     assert not image[c:].any()
     module, args = calls_of(synth, 'bedroom', 1, True, seed=5)[1]
@@ -257,7 +257,8 @@ def test_images_drawn_with_zero_channels_are_taken_as_they_are(synth):
     with pytest.raises(ValueError, match='an image of 40 channels for networks that take'):
         calls(module, torch.zeros(1, 40, 64, 64))
     # torch draws the channels the networks take, no more.
-    assert Synthesizer(config=SynthConfig(runtime='torch'))._image(64, c).shape[0] == c
+    by_torch = Synthesizer(config=SynthConfig(runtime='torch'))
+    assert by_torch._image(64, c, calls=by_torch.calls('bedroom')).shape[0] == c
 
 
 def test_loading_every_bundle_readies_every_call(tiny_weights, one_thread):
@@ -276,3 +277,26 @@ def test_loading_every_bundle_readies_every_call(tiny_weights, one_thread):
     by_torch = Synthesizer(tiny_weights, SynthConfig(runtime='torch'))
     by_torch.load_all()
     assert not isinstance(by_torch.calls('bedroom'), OnnxCalls)
+
+
+def test_networks_onnxruntime_cannot_run_are_torchs_under_auto(tiny_weights, monkeypatch,
+                                                                one_thread):
+    # Loading every bundle finds out at once: under auto such a room type runs torch, and
+    # its rooms are made; asked for by name, onnxruntime's failure is one sentence.
+    def broken(graph, module):
+        raise RuntimeError('unsupported operator ' + 'x' * 10_000)
+    monkeypatch.setattr(runtime, '_session', broken)
+    monkeypatch.setenv(CACHE_ENV, 'off')
+    auto = Synthesizer(tiny_weights)
+    assert auto.runtime == 'onnxruntime'
+    auto.load_all()
+    assert not isinstance(auto.calls('bedroom'), OnnxCalls)
+    result = auto.generate(empty_room('bedroom', HELDOUT_SEED, 2), seed=2)
+    assert check_scene(result.scene).ok and result.scene.objects
+    with pytest.raises(SynthesisError) as e:
+        Synthesizer(tiny_weights, SynthConfig(runtime='onnxruntime')).load_all()
+    message = str(e.value)
+    assert message.startswith('onnxruntime cannot run the ')
+    assert "networks' category call (RuntimeError: unsupported operator" in message
+    assert message.endswith('runtime torch runs them')
+    assert len(message) < 300 and '\n' not in message
