@@ -69,7 +69,7 @@ from .networks.category import category_probabilities
 from .networks.config import resolve_device, resolve_runtime
 from .networks.location import LocationDraws, location_distribution
 from .networks.orientation import decode_angle, snap_angle
-from .networks.runtime import OnnxCalls, padded_channels
+from .networks.runtime import OnnxCalls
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer, quarter_turns, turn_image
 from .robot import Robot, RobotReport, RobotState
 from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
@@ -397,11 +397,11 @@ class Synthesizer:
         """An image of ``c`` channels, ``n`` x ``n`` (a batch of them), shaped channels-first
         for the renderer, laid out as the networks take it: the renderer draws the first
         ``c`` channels; for ``calls`` run by onnxruntime zero channels follow, up to the
-        graphs' count (``runtime.padded_channels``), so that the graphs take it as it is."""
+        graphs' count (``OnnxCalls.image_channels``), so that the graphs take it as it is."""
         lead = () if batch is None else (batch,)
         if not self._channels_last:
             return np.empty(lead + (c, n, n), dtype=np.float32)
-        p = padded_channels(c) if isinstance(calls, OnnxCalls) else c
+        p = calls.image_channels if isinstance(calls, OnnxCalls) else c
         image = np.empty(lead + (n, n, p), dtype=np.float32)
         image[..., c:] = 0.0
         return np.moveaxis(image, -1, -3)

@@ -52,6 +52,7 @@ import numpy as np
 import torch
 from torch import nn
 
+from ..files import write_atomic
 from .blocks import ResNetEncoder
 
 # The network calls of synthesis: what each takes and gives, batch first.
@@ -363,12 +364,7 @@ def _keep(path: Path, graph: bytes) -> None:
     (read-only, full) only costs the next process an export."""
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_name(f'.{path.name}.{os.getpid()}.tmp')
-        try:
-            tmp.write_bytes(graph)
-            os.replace(tmp, path)     # processes writing the same graph: the last one stays
-        finally:
-            tmp.unlink(missing_ok=True)
+        write_atomic(path, graph)     # processes writing the same graph: the last one stays
         # The least recently used graphs beyond CACHE_GRAPHS go (those of weights or code
         # replaced since): reading a graph back marks it used.
         kept = sorted(path.parent.glob('*.onnx'), key=lambda p: p.stat().st_mtime,
