@@ -7,7 +7,8 @@ directory exactly as ``scene-synth generate -n N --out DIR --workers W --lockste
 start-up included; the runs are interleaved (every R for one worker count, then the next
 count). ``--location-batch`` sets ``SynthConfig.location_batch`` (candidate placements decoded
 together; default that of SynthConfig). ``--runtime`` names what runs the networks
-(``SynthConfig.runtime``, default auto); several are run in turn for each R. In lockstep
+(``SynthConfig.runtime``, default auto); several are run in turn for each R. ``--device``
+is where the networks run (``SynthConfig.device``; on a GPU machine, ``cuda``). In lockstep
 a room's seconds are its group's wall time since the room before it ended, so only their
 mean is printed: the group's time shared equally among its rooms (rooms often end in the
 same round, a few microseconds apart).
@@ -20,6 +21,7 @@ cores were free.
 
     .venv/bin/python benchmarks/bench_batch.py [-n 200] [--workers 1 2] [--lockstep 1 8 32]
         [--room-type bedroom] [--location-batch N] [--runtime auto|torch|onnxruntime ...]
+        [--device cpu|cuda]
         [--soak 10000] [--soak-workers 2] [--weights-dir DIR] [--keep DIR]
     .venv/bin/python benchmarks/bench_batch.py --soak-report DIR/soak
 """
@@ -36,6 +38,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from scene_synth_ros.batch import BatchConfig, Manifest, Source, run_batch  # noqa: E402
+from scene_synth_ros.errors import SceneSynthError  # noqa: E402
 from scene_synth_ros.synth import SynthConfig  # noqa: E402
 
 WARM = 100          # rooms after which a worker's memory should stay flat
@@ -52,8 +55,8 @@ def _rows(out: Path) -> list[dict]:
 
 def _batch(out: Path, room_type: str, n: int, workers: int, weights: str | None,
            progress: bool = False, lockstep: int | None = None,
-           location_batch: int | None = None, runtime: str = 'auto'):
-    synthesis = SynthConfig(runtime=runtime)
+           location_batch: int | None = None, runtime: str = 'auto', device: str = 'cpu'):
+    synthesis = SynthConfig(runtime=runtime, device=device)
     if location_batch is not None:
         synthesis.location_batch = location_batch
     cfg = BatchConfig(out=out, source=Source.shells([room_type]), n=n, workers=workers,
@@ -63,12 +66,15 @@ def _batch(out: Path, room_type: str, n: int, workers: int, weights: str | None,
 
 
 def throughput(room_type: str, n: int, workers: int, lockstep: int, weights: str | None,
-               root: Path, location_batch: int | None, runtime: str = 'auto') -> None:
+               root: Path, location_batch: int | None, runtime: str = 'auto',
+               device: str = 'cpu') -> None:
     print(f'  before: {_load()}', flush=True)
-    out = root / f'speed_{workers}_{lockstep}_{runtime}'
+    out = root / f'speed_{workers}_{lockstep}_{runtime}_{device}'
     s = _batch(out, room_type, n, workers, weights, lockstep=lockstep,
-               location_batch=location_batch, runtime=runtime)
+               location_batch=location_batch, runtime=runtime, device=device)
     chosen = json.loads((out / 'batch.json').read_text())['synthesis']['runtime']
+    if device != 'cpu':
+        chosen += f' on {device}'
     rows = _rows(out)
     ok = [r for r in rows if r['status'] == 'ok']
     secs = sorted(r['seconds'] for r in ok)
@@ -129,6 +135,7 @@ def main():
     ap.add_argument('--room-type', default='bedroom')
     ap.add_argument('--runtime', nargs='+', default=['auto'],
                     choices=('auto', 'torch', 'onnxruntime'))
+    ap.add_argument('--device', default='cpu', choices=('cpu', 'cuda', 'auto'))
     ap.add_argument('--soak', type=int, default=0, help='rooms of the memory soak (0: none)')
     ap.add_argument('--soak-workers', type=int, default=2)
     ap.add_argument('--weights-dir', default=None)
@@ -146,10 +153,13 @@ def main():
                 for r in args.lockstep:
                     for runtime in args.runtime:
                         throughput(args.room_type, args.n, w, r, args.weights_dir, root,
-                                   args.location_batch, runtime)
+                                   args.location_batch, runtime, args.device)
         if args.soak:
             soak(args.room_type, args.soak, args.soak_workers, args.weights_dir, root)
 
 
 if __name__ == '__main__':
-    main()
+    try:
+        main()
+    except SceneSynthError as e:        # a device that is not there, a bad weights dir...
+        sys.exit(f'bench_batch.py: {e}')
