@@ -3,6 +3,7 @@ insertion retrieves, and what footprints the dimensions module asked for.
 
     .venv/bin/python benchmarks/model_sizes.py [-n 200] [--room-type bedroom]
                                               [--weights-dir DIR] [--min-count 30]
+                                              [--fit-slack S]
 
 Synthesized rooms are the held-out shells furnished with synthesis seed = index, as in
 ``design_rules.py``; corpus rooms are those held-out rooms themselves. Per category with at
@@ -15,7 +16,8 @@ least ``--min-count`` objects in the corpus rooms, by corpus count:
 - the width the dimensions module drew (every draw, tried or not: its 10th, 50th and 90th
   percentile) against the catalog's narrowest, median and widest model.
 
-The dimensions module is counted by wrapping ``Synthesizer._dimensions`` on the instance
+``--fit-slack`` sets ``SynthConfig.fit_slack`` (default SynthConfig's). The dimensions
+module is counted by wrapping ``Synthesizer._dimensions`` on the instance
 (this process only); it changes no room.
 """
 import argparse
@@ -32,7 +34,7 @@ sys.path.insert(0, str(ROOT))
 from scene_synth_ros import catalog  # noqa: E402
 from scene_synth_ros.corpus import HELDOUT_SEED  # noqa: E402
 from scene_synth_ros.corpus.generate import empty_room, generate_room  # noqa: E402
-from scene_synth_ros.synth import Synthesizer  # noqa: E402
+from scene_synth_ros.synth import SynthConfig, Synthesizer  # noqa: E402
 
 
 def ranks(scenes, room_type: str) -> dict[str, list[int]]:
@@ -55,10 +57,14 @@ def main() -> int:
     ap.add_argument('--room-type', default='bedroom')
     ap.add_argument('--weights-dir', default=None, help="default: the package's weights/")
     ap.add_argument('--min-count', type=int, default=30)
+    ap.add_argument('--fit-slack', type=float, default=None)
     args = ap.parse_args()
     torch.set_num_threads(1)
     rt = args.room_type
-    syn = Synthesizer(args.weights_dir)
+    cfg = SynthConfig()
+    if args.fit_slack is not None:
+        cfg.fit_slack = args.fit_slack
+    syn = Synthesizer(args.weights_dir, cfg)
     drawn = defaultdict(list)
     dimensions = syn._dimensions
 

@@ -719,14 +719,24 @@ class Synthesizer:
     def _dimensions(self, ctx: _Context, scene: Scene, c: int, points: np.ndarray,
                     yaws: list[float]) -> list[tuple[float, float]]:
         """The footprint (depth, width) of a ``c`` object at each point and yaw, from the
-        dimensions CVAE shown the image in the object's frame."""
+        dimensions CVAE shown the image in the object's frame: its decoded mean, drawn from
+        the likelihood around it where the bundle learned its spread
+        (``ModelConfig.dimensions_noise``)."""
         with ctx.timed('render'):
             x = self._local_images(ctx, scene, points, yaws)
         with ctx.timed('dimensions'):
+            net = ctx.bundle.networks['dimensions']
             cats = torch.full((len(points),), c, dtype=torch.long, device=self.device)
-            z = ctx.bundle.networks['dimensions'].noise(len(points), ctx.gen, self.device)
+            z = net.noise(len(points), ctx.gen, self.device)
             log_dims, = ask(ctx.calls, 'dimensions', x, cats, z)
-            dims = torch.exp(log_dims).cpu().tolist()
+            log_dims = log_dims.float().cpu()
+            sigma = net.spread(cats)
+            if sigma is not None:
+                # The room's own generator (on the CPU, as for z): the same seed draws the
+                # same footprints in lockstep and alone, on every device.
+                noise = torch.randn(log_dims.shape, generator=ctx.gen, device=ctx.gen.device)
+                log_dims = log_dims + sigma.float().cpu() * noise.cpu()
+            dims = torch.exp(log_dims).tolist()
         return [(d[0], d[1]) for d in dims]
 
     # ---- insertion: catalog retrieval and rejection -----------------------------------------

@@ -11,7 +11,8 @@ from scene_synth_ros.categories import room_spec
 from scene_synth_ros.corpus.generate import generate_room
 from scene_synth_ros.networks.bundle import BundleError, build_networks, load_bundle, save_bundle
 from scene_synth_ros.networks.config import PipelineConfig, resolve_device
-from scene_synth_ros.networks.dimensions import box_sdf
+from scene_synth_ros.networks.cvae import kl_to_prior
+from scene_synth_ros.networks.dimensions import box_sdf, dimensions_elbo
 from scene_synth_ros.networks.examples import (
     ExampleSource,
     insertion_order,
@@ -390,6 +391,47 @@ def test_box_sdf_sign_and_gradient():
     assert sdf[0, 0, 41, 32] > 0                 # 0.85 m across: outside the 1 m width
     sdf.sum().backward()
     assert dims.grad is not None and dims.grad.abs().sum() > 0
+
+
+def test_dimensions_likelihood_with_a_learned_spread():
+    # With a spread learned per category, the dimensions' negative ELBO is the Gaussian
+    # negative log-likelihood (less its constant) plus the KL; without, sigma is 0.1.
+    g = torch.Generator().manual_seed(0)
+    out, target = torch.randn(5, 2, generator=g), torch.randn(5, 2, generator=g)
+    mu, logvar = torch.randn(5, 8, generator=g), torch.randn(5, 8, generator=g)
+    log_sigma = torch.randn(5, 2, generator=g) * 0.5 - 2
+    _, nelbo = dimensions_elbo(out, target, mu, logvar, 1.0, log_sigma)
+    nll = -torch.distributions.Normal(out, log_sigma.exp()).log_prob(target).sum(1)
+    assert torch.allclose(nelbo, nll - math.log(2 * math.pi) + kl_to_prior(mu, logvar),
+                          atol=1e-4)
+    _, fixed = dimensions_elbo(out, target, mu, logvar, 1.0)
+    _, at_fixed = dimensions_elbo(out, target, mu, logvar, 1.0,
+                                  torch.full_like(log_sigma, math.log(0.1)))
+    assert torch.allclose(fixed, at_fixed - 2 * math.log(0.1), atol=1e-3)
+    # The loss weighs the KL, not the likelihood.
+    loss, _ = dimensions_elbo(out, target, mu, logvar, 0.5, log_sigma)
+    assert torch.isclose(loss, (nelbo - 0.5 * kl_to_prior(mu, logvar)).mean(), atol=1e-4)
+
+
+def test_learned_spread_starts_at_the_spread_of_the_first_targets():
+    from scene_synth_ros.networks.train import SPREAD_BATCHES, _initial_spread
+    model = replace(tiny_config().model, dimensions_noise=True)
+    net = build_networks('bathroom', model)['dimensions']
+    assert net.log_sigma.requires_grad
+    assert build_networks('bathroom', tiny_config().model)['dimensions'].log_sigma is None
+    rng = np.random.default_rng(0)
+    data = [{'category': torch.tensor([0] * 6 + [1] * 2),
+             'target': torch.tensor(rng.normal([0.0, 0.5], [0.05, 0.2], (8, 2)),
+                                    dtype=torch.float32)}
+            for _ in range(SPREAD_BATCHES + 4)]     # the batches after the first are unread
+    _initial_spread(net, data)
+    y = np.concatenate([d['target'].numpy() for d in data[:SPREAD_BATCHES]])
+    cats = np.concatenate([d['category'].numpy() for d in data[:SPREAD_BATCHES]])
+    for c in (0, 1):
+        np.testing.assert_allclose(net.log_sigma[c].detach().numpy(),
+                                   np.log(y[cats == c].std(axis=0, ddof=1)), rtol=1e-5)
+    # Categories the batches do not show keep the fixed likelihood's sigma.
+    assert torch.allclose(net.log_sigma[2:], torch.tensor(math.log(0.1)))
 
 
 # ---- training and bundles ----------------------------------------------------------------------

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import torch
 
-from scene_synth_ros.categories import ROOM_TYPES
+from scene_synth_ros.categories import ROOM_TYPES, room_spec
 from scene_synth_ros.corpus.generate import empty_room, generate_room
 from scene_synth_ros.evaluation.design_rules import groups
 from scene_synth_ros.geometry import check_scene, door_zone
@@ -233,6 +233,50 @@ def test_the_dimensions_crops_are_the_crops_drawn_at_their_yaws(synth):
     moved = points + 0.05
     got = crops(scene, moved, yaws[:3])
     np.testing.assert_allclose(got, drawn(moved, yaws[:3]), atol=1e-6)
+
+
+def test_dimensions_drawn_from_a_learned_spread(tiny_weights, tmp_path):
+    # A dimensions module retrained with its likelihood's spread learned (the rest of the
+    # bundle kept) draws each footprint around its decoded mean, by sigma times noise from
+    # the room's generator: the same for the same seed, in torch and in onnxruntime.
+    from dataclasses import replace
+
+    from conftest import tiny_config
+
+    from scene_synth_ros.networks.train import train
+    cfg = tiny_config(steps=2)
+    cfg = replace(cfg, model=replace(cfg.model, dimensions_noise=True))
+    train(['bathroom'], cfg, tmp_path / 'run', tmp_path / 'out', progress=False,
+          echo=lambda s: None, modules=('dimensions',), others_from=tiny_weights)
+    bundle = load_bundle(tmp_path / 'out' / 'bathroom.pt')
+    assert bundle.config.model.dimensions_noise
+    assert bundle.networks['dimensions'].log_sigma.shape == (len(room_spec('bathroom').names), 2)
+    room = empty_room('bathroom', 3)
+    points = np.array([[1.0, 1.2]] * 256)
+    yaws = [0.3] * 256
+
+    def drawn(synth, log_sigma, seed=5):
+        net = synth.bundle('bathroom').networks['dimensions']
+        with torch.no_grad():
+            net.log_sigma[0] = torch.tensor(log_sigma)
+        ctx = synth._context(room, seed)
+        return np.log(np.array(synth._dimensions(ctx, Scene(room, []), 0, points, yaws)))
+
+    torch_synth = Synthesizer(tmp_path / 'out', SynthConfig(runtime='torch'))
+    mean = drawn(torch_synth, [-40.0, -40.0])          # sigma 4e-18: the decoded means
+    spread = drawn(torch_synth, [math.log(0.2), math.log(0.05)]) - mean
+    np.testing.assert_allclose(spread.std(axis=0), [0.2, 0.05], rtol=0.2)
+    assert abs(spread.mean(axis=0)).max() < 0.05
+    assert np.array_equal(drawn(torch_synth, [math.log(0.2), math.log(0.05)]) - mean, spread)
+    assert not np.array_equal(drawn(torch_synth, [math.log(0.2), math.log(0.05)], seed=6),
+                              spread + mean)
+    onnx = Synthesizer(tmp_path / 'out', SynthConfig(runtime='onnxruntime'))
+    np.testing.assert_allclose(drawn(onnx, [math.log(0.2), math.log(0.05)]), spread + mean,
+                               atol=1e-4)
+    # Whole rooms from such a bundle are valid and reproducible.
+    a = torch_synth.generate(room, seed=1).scene
+    assert check_scene(a).ok
+    assert a.to_dict() == torch_synth.generate(room, seed=1).scene.to_dict()
 
 
 # ---- modes -----------------------------------------------------------------------------------

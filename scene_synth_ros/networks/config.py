@@ -54,6 +54,12 @@ class ModelConfig:
     count_features: int = 64       # width of the bag-of-categories MLP
     hidden: int = 128              # width of the MLP heads
     latent: int = 8                # CVAE latent dimension (orientation and dimensions)
+    # The dimensions module's likelihood with a spread learned per category and axis
+    # (``DimensionsModel.log_sigma``), drawn from at synthesis: footprint = decoded mean times
+    # exp(sigma * noise). Off (the shipped weights), the likelihood's sigma is fixed at 0.1
+    # and synthesis takes the mean, whose draws spread over a third of the corpus's sizes
+    # (``benchmarks/model_sizes.py``).
+    dimensions_noise: bool = False
     discriminator_widths: tuple[int, ...] = (16, 32, 64, 64)
 
 
@@ -63,7 +69,7 @@ OWN_SETTINGS: dict[str, tuple[str, ...]] = {
     'category': ('category_encoder', 'count_features'),
     'location': ('location_resolution', 'location_encoder', 'location_decoder_widths',
                  'location_dropout', 'location_skips', 'location_offsets'),
-    'dimensions': ('discriminator_widths',),
+    'dimensions': ('discriminator_widths', 'dimensions_noise'),
 }
 
 

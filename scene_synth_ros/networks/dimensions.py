@@ -5,6 +5,8 @@ loss comes from a discriminator that sees the scene with the signed distance fie
 predicted box."""
 from __future__ import annotations
 
+import math
+
 import torch
 from torch import nn
 
@@ -12,8 +14,10 @@ from .blocks import mlp
 from .config import ModelConfig
 from .cvae import ConditionalVAE, kl_to_prior
 
-# The decoder works in log metres; a Gaussian likelihood with sigma = 0.1 (about 10 %).
-LOG_PRECISION = 1.0 / (2 * 0.1 ** 2)
+# The decoder works in log metres; a Gaussian likelihood with sigma = 0.1 (about 10 %), or
+# with a sigma learned per category and axis, starting there (``ModelConfig.dimensions_noise``).
+SIGMA = 0.1
+LOG_PRECISION = 1.0 / (2 * SIGMA ** 2)
 SDF_SCALE = 0.25   # metres: the SDF channel holds tanh(distance / SDF_SCALE)
 
 
@@ -22,11 +26,29 @@ class DimensionsModel(ConditionalVAE):
 
     def __init__(self, in_channels: int, num_categories: int, cfg: ModelConfig):
         super().__init__(in_channels, num_categories, 2, 2, cfg)
+        # log sigma of the likelihood per category, (depth, width); None: fixed at SIGMA
+        # and not drawn from.
+        self.log_sigma = (nn.Parameter(torch.full((num_categories, 2), math.log(SIGMA)))
+                          if cfg.dimensions_noise else None)
+
+    def spread(self, category: torch.Tensor) -> torch.Tensor | None:
+        """The likelihood's sigma for each of ``category`` (B x 2, log metres), or None
+        when it is fixed."""
+        if self.log_sigma is None:
+            return None
+        return torch.exp(self.log_sigma[category])
 
 
 def dimensions_elbo(out: torch.Tensor, target: torch.Tensor, mu, logvar,
-                    kl_weight: float = 1.0) -> tuple[torch.Tensor, torch.Tensor]:
-    recon = LOG_PRECISION * (out - target).pow(2).sum(dim=1)
+                    kl_weight: float = 1.0, log_sigma: torch.Tensor | None = None
+                    ) -> tuple[torch.Tensor, torch.Tensor]:
+    """The loss (weighted negative ELBO, batch mean) and the negative ELBO per example, up
+    to the likelihood's constant. ``log_sigma`` (B x 2): the learned sigmas of the examples'
+    categories; None: sigma fixed at SIGMA."""
+    if log_sigma is None:
+        recon = LOG_PRECISION * (out - target).pow(2).sum(dim=1)
+    else:
+        recon = (0.5 * (out - target).pow(2) * torch.exp(-2 * log_sigma) + log_sigma).sum(dim=1)
     kl = kl_to_prior(mu, logvar)
     return (recon + kl_weight * kl).mean(), recon + kl
 
