@@ -207,6 +207,20 @@ def evaluate(module: str, net: nn.Module, source: ExampleSource, cfg: PipelineCo
 
 
 # ---- one module ------------------------------------------------------------------------------
+def _resume(ckpt: Path, device, net: nn.Module, opt, disc: nn.Module | None, disc_opt) -> int:
+    """The step a module's training goes on from: that of its checkpoint ``ckpt``, whose
+    states are loaded into the networks and optimisers, or 0 without one."""
+    if not ckpt.is_file():
+        return 0
+    state = torch.load(ckpt, map_location=device, weights_only=True)
+    net.load_state_dict(state['net'])
+    opt.load_state_dict(state['opt'])
+    if disc is not None:
+        disc.load_state_dict(state['disc'])
+        disc_opt.load_state_dict(state['disc_opt'])
+    return int(state['step'])
+
+
 def train_module(module: str, net: nn.Module, source: ExampleSource, val: ExampleSource,
                  cfg: PipelineConfig, device, run_dir: Path, log: Callable[[dict], None],
                  progress: bool = True, until: int | None = None) -> dict[str, float] | None:
@@ -224,16 +238,8 @@ def train_module(module: str, net: nn.Module, source: ExampleSource, val: Exampl
                              source.num_categories, cfg.model).to(device)
         disc_opt = torch.optim.Adam(disc.parameters(), lr=sched.lr, betas=(0.5, 0.999))
     ckpt = run_dir / f'{module}.ckpt'
-    start = 0
-    if ckpt.is_file():
-        state = torch.load(ckpt, map_location=device, weights_only=True)
-        net.load_state_dict(state['net'])
-        opt.load_state_dict(state['opt'])
-        if disc is not None:
-            disc.load_state_dict(state['disc'])
-            disc_opt.load_state_dict(state['disc_opt'])
-        start = int(state['step'])
-    elif module == 'dimensions' and getattr(net, 'log_sigma', None) is not None:
+    start = _resume(ckpt, device, net, opt, disc, disc_opt)
+    if start == 0 and getattr(net, 'log_sigma', None) is not None:
         _initial_spread(net, _Batches(source, module, t.seed, sched.batch_size))
 
     def save(step: int) -> None:
