@@ -216,7 +216,11 @@ class SynthConfig:
     centre_draws: int = 4
     models_per_location: int = 3        # catalog models tried at one location
     category_attempts: int = 4          # category draws per insertion before giving up
-    fit_slack: float = 0.15             # log-footprint slack within which co-occurrence decides
+    # Log-footprint slack within which co-occurrence decides, for dimensions modules that
+    # answer their mean; one that draws from its learned spread (``dimensions_noise``) has
+    # the nearest model: its draw is the size, and co-occurrence would hand near ties to the
+    # corpus's more frequent narrow models (``benchmarks/model_sizes.py``).
+    fit_slack: float = 0.15
     snap_threshold: float = 0.5         # snap when the classifier's probability is above this
     wall_reach: float = 0.25            # push first-tier objects this close to a wall onto it
                                         # (15 cm left near misses: README, "The synthesis
@@ -743,13 +747,16 @@ class Synthesizer:
     def candidate_models(self, ctx: _Context, scene: Scene, category: str, width: float,
                          depth: float) -> list[catalog.ModelVariant]:
         """Catalog models from the best footprint fit; among those within ``fit_slack`` of
-        the best, the ones that co-occur most with the models in the room come first (the
-        user's models, which no training room holds, keep their footprint order)."""
+        the best (none but ties where the footprint was drawn from a learned spread), the
+        ones that co-occur most with the models in the room come first (the user's models,
+        which no training room holds, keep their footprint order)."""
         ranked = catalog.load(self.config.catalog).ranked(category, width, depth,
                                                           ctx.spec.room_type)
         best = catalog.footprint_distance(ranked[0], width, depth)
+        drawn = ctx.bundle.networks['dimensions'].log_sigma is not None
+        slack = 0.0 if drawn else self.config.fit_slack
         close = [v for v in ranked
-                 if catalog.footprint_distance(v, width, depth) <= best + self.config.fit_slack]
+                 if catalog.footprint_distance(v, width, depth) <= best + slack]
         rest = ranked[len(close):]
         b = ctx.bundle
         index = b.model_index

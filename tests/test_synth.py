@@ -382,9 +382,12 @@ def test_shipped_weights_load_without_pickle_and_fit_the_budget():
         b = load_bundle(f)
         # The default (compact) networks; their location modules came from the longer
         # schedule of compact_long.yaml, the bedroom's category module from that of
-        # compact_category_long.yaml, which change no network.
+        # compact_category_long.yaml, the dimensions modules from compact_dims_noise.yaml,
+        # which change no network.
         assert b.room_type == rt
-        assert b.config.name in ('compact', 'compact_long', 'compact_category_long')
+        assert b.config.name in ('compact', 'compact_long', 'compact_category_long',
+                                 'compact_dims_noise')
+        assert b.networks['dimensions'].log_sigma is not None
         assert b.config.model == compact.model
         table = b.metrics['components']
         # Trained networks beat freshly initialised ones on held-out rooms.

@@ -56,8 +56,9 @@ class ModelConfig:
     latent: int = 8                # CVAE latent dimension (orientation and dimensions)
     # The dimensions module's likelihood with a spread learned per category and axis
     # (``DimensionsModel.log_sigma``), drawn from at synthesis: footprint = decoded mean times
-    # exp(sigma * noise). Off (the shipped weights), the likelihood's sigma is fixed at 0.1
-    # and synthesis takes the mean, whose draws spread over a third of the corpus's sizes
+    # exp(sigma * noise). On in every configuration of config/ and in the shipped weights;
+    # off (bundles made before it), the likelihood's sigma is fixed at 0.1 and synthesis takes
+    # the mean, whose draws spread over a third of the corpus's sizes
     # (``benchmarks/model_sizes.py``).
     dimensions_noise: bool = False
     discriminator_widths: tuple[int, ...] = (16, 32, 64, 64)
