@@ -9,8 +9,10 @@ it, the first ones moved to the centre of the blob they fell in (``SynthConfig.l
 ``centre_draws``) and, in bundles with offsets, by the offset predicted there. Object
 Orientation: at each location the orientation module draws a facing, snapped to the room's
 axes when its classifier says so. Object Dimensions: the dimensions module draws a
-footprint. Object Insertion: the catalog model nearest that footprint is placed, preferring
-models that co-occur in the training rooms with those already there. A placement is rejected
+footprint (around its decoded mean, by the spread it learned, where it learned one). Object
+Insertion: the catalog model nearest that footprint is placed; among near ties, for a module
+that answers its mean, models that co-occur in the training rooms with those already there
+come first. A placement is rejected
 if it collides with first-tier furniture, leaves the floor, enters a door's clear zone,
 breaks the robot promise (``robot``: the configured robot must still drive between the doors
 and reach every object it reached, and the new one), breaks a design rule kept at insertion
