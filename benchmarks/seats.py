@@ -35,6 +35,9 @@ import torch
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / 'benchmarks'))
+
+from shortfall import watch_fits_checks  # noqa: E402
 
 from scene_synth_ros import catalog, robot  # noqa: E402
 from scene_synth_ros.corpus import HELDOUT_SEED  # noqa: E402
@@ -48,10 +51,9 @@ from scene_synth_ros.evaluation.design_rules.groups import (  # noqa: E402
     seated_at,
     within_reach,
 )
-from scene_synth_ros.geometry import enters_zone, overlaps_any  # noqa: E402
 from scene_synth_ros.render import Frame  # noqa: E402
 from scene_synth_ros.scene import PlacedObject, Scene, wrap_angle  # noqa: E402
-from scene_synth_ros.synth import INSERTION_RULES, Synthesizer, rule_categories  # noqa: E402
+from scene_synth_ros.synth import Synthesizer  # noqa: E402
 
 DRAWS = 8
 
@@ -104,8 +106,8 @@ class SeatDraws:
     """Wraps the synthesizer's steps on the instance (this process only) to count, per step,
     which categories were drawn and whether they went in; per seat draw made while the room
     holds a desk without a seat, what came of it and, when it failed, whether any seated
-    placement before one of those desks would have fitted (``FEASIBLE_SCAN``); and why seat
-    placements were refused (the first check of ``fits`` that refuses, in its order)."""
+    placement before one of those desks would have fitted; and why seat placements were
+    refused (the check of ``fits`` that refused, ``shortfall.watch_fits_checks``)."""
 
     def __init__(self, syn: Synthesizer):
         self.syn = syn
@@ -115,8 +117,11 @@ class SeatDraws:
         self.failed_before_desk = Counter()
         self.seat_draws = Counter()
         self.refused = Counter()
+        self.check = ''                      # the last check ``fits`` began
         syn._insert_one, syn._insert_category = self._insert_one, self._insert_category
         syn.fits = self._fits
+        watch_fits_checks(lambda label: setattr(self, 'check', label),
+                          lambda name: f'rule {name}')
 
     def _insert_one(self, ctx, scene, allow_stop=True, only=None):
         self.tries = []
@@ -148,9 +153,13 @@ class SeatDraws:
         return obj
 
     def _fits(self, ctx, scene, obj, parent=None):
+        self.check = 'floor'
         ok = self.orig['fits'](ctx, scene, obj, parent)
         if not ok and obj.category in SEATS and obj.support is None:
-            self.refused[refusal(self.syn, ctx, scene, obj)] += 1
+            why = self.check
+            if why == 'path':
+                why = robot_refusal(self.syn, ctx, scene, obj)
+            self.refused[REFUSALS.get(why, why)] += 1
         return ok
 
     def _seated_fit(self, ctx, scene, name, desks) -> bool:
@@ -176,22 +185,13 @@ def unseated_desks(scene: Scene) -> list:
             if d.category in DESKS and not any(seated_at(s, d) for s in seats)]
 
 
-def refusal(syn: Synthesizer, ctx, scene: Scene, obj) -> str:
-    """The first of ``Synthesizer.fits``'s checks that refuses ``obj`` (first tier)."""
-    if not ctx.floor.covers(obj.footprint()):
-        return 'off the floor'
-    if overlaps_any(obj, scene.first_tier):
-        return 'collides'
-    if any(enters_zone(obj, z) for z in ctx.zones):
-        return "in a door's zone"
+# ``watch_fits_checks``'s labels as this table prints them.
+REFUSALS = {'floor': 'off the floor', 'collide': 'collides', 'door': "in a door's zone"}
+
+
+def robot_refusal(syn: Synthesizer, ctx, scene: Scene, obj) -> str:
+    """What of the robot promise ``obj`` (first tier, refused by it) breaks."""
     after = Scene(scene.room, scene.objects + [obj])
-    for name in syn.config.insertion_rules:
-        changed_by = rule_categories(name, ctx.spec.room_type)
-        if changed_by is not None and obj.category not in changed_by:
-            continue
-        before, now = INSERTION_RULES[name](scene), INSERTION_RULES[name](after)
-        if not all(ok or before.get(case) is False for case, ok in now.items()):
-            return f'rule {name}'
     before = syn._robot_state(ctx, scene)
     now = robot.state_after(before, after, syn.config.robot)
     if before.doors_connected and not now.doors_connected:

@@ -55,6 +55,27 @@ REASONS = ('floor', 'collide', 'door', 'rules', 'path', 'support', 'sibling')
 CHECKS = {'overlaps_any': 'collide', 'enters_zone': 'door', 'support_fraction': 'support'}
 
 
+def watch_fits_checks(note, rule_label=lambda name: 'rules') -> None:
+    """Have each check ``Synthesizer.fits`` makes call ``note(label)`` before it runs
+    (``CHECKS``; each design rule kept at insertion as ``rule_label(name)``; the robot
+    promise as 'path'), by wrapping them in ``scene_synth_ros.synth`` (this process only):
+    after a refusal the last label noted names the check that refused, none noted since the
+    call the floor, which ``fits`` checks first."""
+    def watched(fn, label):
+        def wrapped(*a, **k):
+            note(label)
+            return fn(*a, **k)
+        return wrapped
+
+    for fn, label in CHECKS.items():
+        setattr(synth_module, fn, watched(getattr(synth_module, fn), label))
+    rules = synth_module.INSERTION_RULES
+    for name in rules:
+        rules[name] = watched(rules[name], rule_label(name))
+    robot = synth_module.robot
+    robot.state_after = watched(robot.state_after, 'path')
+
+
 class Probe:
     """Counts what each step of a ``Synthesizer`` does, by wrapping it."""
 
@@ -65,13 +86,7 @@ class Probe:
         self.orig = {name: getattr(synth, name) for name in self.WRAPPED}
         for name in self.WRAPPED:
             setattr(synth, name, getattr(self, name.lstrip('_')))
-        for fn, label in CHECKS.items():
-            setattr(synth_module, fn, self._check(getattr(synth_module, fn), label))
-        rules = synth_module.INSERTION_RULES
-        for name in rules:
-            rules[name] = self._check(rules[name], 'rules')
-        robot = synth_module.robot
-        robot.state_after = self._check(robot.state_after, 'path')
+        watch_fits_checks(lambda label: setattr(self, 'last_check', label))
         location = synth_module.location_distribution
 
         def location_distribution(*a, **k):
@@ -82,12 +97,6 @@ class Probe:
         self.per_category = defaultdict(Counter)     # category -> counts
         self.poke = defaultdict(list)                # category -> metres through the wall
         self.steps: list[dict] = []
-
-    def _check(self, fn, label):
-        def wrapped(*a, **k):
-            self.last_check = label
-            return fn(*a, **k)
-        return wrapped
 
     def insert_one(self, ctx, scene, allow_stop=True, only=None):
         self.step = {'n': len(scene.objects), 'draws': 0}
