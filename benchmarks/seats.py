@@ -166,7 +166,7 @@ class SeatDraws:
         for d in desks:
             ahead = np.array([math.cos(d.yaw), math.sin(d.yaw)])
             side = np.array([-ahead[1], ahead[0]])
-            for v in catalog.variants(name, ctx.spec.room_type):
+            for v in catalog.load(self.syn.config.catalog).variants(name, ctx.spec.room_type):
                 for gap in np.arange(0.0, SEAT_REACH + 1e-9, 0.05):
                     for off in np.linspace(-d.width / 2, d.width / 2, 9):
                         xy = (np.asarray(d.position[:2]) + ahead * (d.depth / 2 + gap
