@@ -77,6 +77,10 @@ def throughput(room_type: str, n: int, workers: int, lockstep: int, weights: str
         chosen += f' on {device}'
     rows = _rows(out)
     ok = [r for r in rows if r['status'] == 'ok']
+    if not ok:
+        print(f'{workers} worker(s), lockstep {lockstep}, {chosen}: no room was furnished; '
+              f'the first error: {rows[0]["error"] if rows else "none written"}', flush=True)
+        return
     secs = sorted(r['seconds'] for r in ok)
     cpu = [r['cpu_seconds'] for r in ok]
     print(f'{workers} worker(s), lockstep {lockstep}, {chosen}: {n} {room_type}s in '

@@ -497,21 +497,25 @@ def _lost(job: RoomJob) -> RoomResult:
                        'rss_mb': None, 'peak_mb': None}, {})
 
 
-def _pool_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int
-                  ) -> Iterator[RoomResult]:
+def _pool_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int,
+                  spawn: bool | None = None) -> Iterator[RoomResult]:
     """The rooms of ``groups`` furnished by ``workers`` processes, a group at a time each,
     each room as it ends, each worker's in the order it made them (so that models it sends
     once come before a later room that names them). A worker that dies (killed, out of
     memory) costs the rooms in flight that had not come back, which fail with ``LOST``; the
-    others go on in new processes, unless a pool dies before furnishing anything."""
+    others go on in new processes, unless a pool dies before furnishing anything. The
+    workers are spawned, not forked, where they use CUDA (``spawn`` None: as the synthesis
+    device says; see ``parallel``)."""
     from concurrent.futures.process import BrokenProcessPool
     from queue import Empty
 
     from .parallel import process_event, process_executor, process_queue
+    if spawn is None:
+        spawn = resolve_device(spec.synthesis.device).type == 'cuda'
     remaining = deque(groups)
     while remaining:
-        results, stop = process_queue(), process_event()
-        pool = process_executor(workers, _start_pool_worker, (spec, results, stop))
+        results, stop = process_queue(spawn), process_event(spawn)
+        pool = process_executor(workers, _start_pool_worker, (spec, results, stop), spawn)
         inflight: dict = {}             # future -> group
         received: dict[int, set[int]] = {}  # group key -> indices of its rooms that came back
         produced = broken = False

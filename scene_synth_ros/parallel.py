@@ -8,11 +8,14 @@ from multiprocessing.pool import Pool
 from typing import Callable, Iterable
 
 
-def _context():
+def _context(spawn: bool = False):
     # Forked where the platform can fork: a worker then starts at once with the modules and
     # data its parent already loaded. Spawned elsewhere (macOS, Windows), where a worker
-    # imports what it needs itself.
-    return mp.get_context('fork' if 'fork' in mp.get_all_start_methods() else 'spawn')
+    # imports what it needs itself, and for workers that use CUDA: asking torch whether there
+    # is a device initialises the CUDA driver, which a forked child cannot use again (every
+    # room of a batch on cuda failed, seen on an H200).
+    fork = not spawn and 'fork' in mp.get_all_start_methods()
+    return mp.get_context('fork' if fork else 'spawn')
 
 
 def process_pool(workers: int, initializer: Callable | None = None,
@@ -22,19 +25,20 @@ def process_pool(workers: int, initializer: Callable | None = None,
 
 
 def process_executor(workers: int, initializer: Callable | None = None,
-                     initargs: Iterable = ()) -> ProcessPoolExecutor:
+                     initargs: Iterable = (), spawn: bool = False) -> ProcessPoolExecutor:
     """``process_pool`` as an executor: a worker that dies (killed, out of memory) breaks
-    it with ``BrokenProcessPool`` where a ``Pool`` would wait for ever for its task."""
-    return ProcessPoolExecutor(workers, _context(), initializer, tuple(initargs))
+    it with ``BrokenProcessPool`` where a ``Pool`` would wait for ever for its task.
+    ``spawn``: spawned workers even where the platform can fork (workers that use CUDA)."""
+    return ProcessPoolExecutor(workers, _context(spawn), initializer, tuple(initargs))
 
 
-def process_queue() -> mp.Queue:
-    """A queue that the processes of ``process_executor`` can be given at their start
-    (``initargs``), to send results before their task ends."""
-    return _context().Queue()
+def process_queue(spawn: bool = False) -> mp.Queue:
+    """A queue that the processes of ``process_executor`` (as ``spawn``) can be given at
+    their start (``initargs``), to send results before their task ends."""
+    return _context(spawn).Queue()
 
 
-def process_event():
-    """An event that the processes of ``process_executor`` can be given at their start, to
-    be told to stop early."""
-    return _context().Event()
+def process_event(spawn: bool = False):
+    """An event that the processes of ``process_executor`` (as ``spawn``) can be given at
+    their start, to be told to stop early."""
+    return _context(spawn).Event()

@@ -81,6 +81,16 @@ def test_rooms_in_lockstep_on_cuda_are_valid_and_nearly_all_the_rooms_made_alone
     assert same >= 6, f'{same} of 8 rooms the same'
 
 
+def test_a_batch_on_cuda_furnishes_every_room(tmp_path):
+    """Batch workers on CUDA are spawned (a forked child cannot use the CUDA its parent
+    initialised: every room failed before)."""
+    from scene_synth_ros.batch import BatchConfig, Source, run_batch
+    cfg = BatchConfig(out=tmp_path / 'out', source=Source.shells(['bedroom']), n=8, workers=2,
+                      lockstep=4, synthesis=SynthConfig(device='cuda', runtime='torch'))
+    summary = run_batch(cfg, echo=lambda s: None)
+    assert summary.rooms_ok == 8 and summary.valid == 8, summary
+
+
 def test_training_steps_on_cuda_with_pinned_loader_workers(tmp_path):
     cfg = tiny_config(steps=3)
     cfg = replace(cfg, device='cuda', train=replace(cfg.train, loader_workers=2))
