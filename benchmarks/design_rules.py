@@ -3,7 +3,7 @@
     .venv/bin/python benchmarks/design_rules.py [-n 150] [--room-type all] [--workers 2]
                                                 [--weights-dir DIR] [--uniform-draws]
                                                 [--networks-alone] [--robot-reach M]
-                                                [--fit-slack S]
+                                                [--fit-slack S] [--zone-samples K]
 
 Corpus rooms are held-out rooms (seed ``corpus.HELDOUT_SEED``); synthesized rooms are the same
 empty shells furnished by the shipped weights (or those of ``--weights-dir``), room ``i`` with
@@ -29,15 +29,16 @@ TIGHT = ('wall_contact', 'floating', 'window', 'reachable')   # 3-point targets,
 _synth = None
 
 
-def _init_worker(weights, location_mode, networks_alone, robot_reach, fit_slack=None):
+def _init_worker(weights, location_mode, networks_alone, robot_reach, overrides=None):
     global _synth
     import torch
     torch.set_num_threads(1)
     from scene_synth_ros.robot import Robot
     from scene_synth_ros.synth import SynthConfig, Synthesizer
     cfg = SynthConfig(location_mode=location_mode)
-    if fit_slack is not None:
-        cfg.fit_slack = fit_slack
+    for name, value in (overrides or {}).items():
+        if value is not None:
+            setattr(cfg, name, value)
     if robot_reach is not None:
         cfg.robot = Robot(cfg.robot.radius, robot_reach, cfg.robot.clearance)
     if networks_alone:
@@ -74,6 +75,8 @@ def main() -> int:
                          'empty): what the networks give by themselves')
     ap.add_argument('--fit-slack', type=float, default=None,
                     help="SynthConfig.fit_slack (default: SynthConfig's)")
+    ap.add_argument('--zone-samples', type=int, default=None,
+                    help="SynthConfig.zone_samples (default: SynthConfig's)")
     ap.add_argument('--robot-reach', type=float, default=None,
                     help="the reach of the robot whose promise synthesis keeps (default: "
                          "Robot()'s; the rules' own robot reaches 0.15 m)")
@@ -82,7 +85,8 @@ def main() -> int:
     jobs = [(rt, i) for rt in room_types for i in range(args.n)]
     with process_pool(args.workers, _init_worker,
                       (args.weights_dir, not args.uniform_draws, args.networks_alone,
-                       args.robot_reach, args.fit_slack)) as pool:
+                       args.robot_reach, {'fit_slack': args.fit_slack,
+                                          'zone_samples': args.zone_samples})) as pool:
         synthesized = pool.map(_synthesize, jobs, chunksize=4)
     print(f'design rules kept: held-out corpus vs synthesized, {args.n} rooms per type '
           f'(held-out shells, synthesis seeds 0..{args.n - 1})')

@@ -66,7 +66,7 @@ def share(synth: Synthesizer, scene: Scene, piece, partner, room_type: str):
     with torch.no_grad():
         logits = ctx.bundle.networks['location'](image)[0]
     c = ctx.spec.index(piece.category)
-    p = location_distribution(logits, c, synth._mask(ctx, rest, piece.category, small),
+    p = location_distribution(logits, c, synth._mask(ctx, rest, piece.category, small)[0],
                               synth.config.location_temperature)
     if p is None:
         return None, 0.0

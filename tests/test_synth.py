@@ -173,8 +173,9 @@ def test_location_mask(synth):
     desk = box('desk', 3.0, 2.0, 1.2, 0.6, 0.75, oid='desk_0')
     scene = Scene(ROOM, [desk])
     small = synth._renderer(64).render(scene, ctx.grid)
-    first = synth._mask(ctx, scene, 'wardrobe', small)
-    second = synth._mask(ctx, scene, 'table lamp', small)
+    first, first_zoned = synth._mask(ctx, scene, 'wardrobe', small)
+    second, second_zoned = synth._mask(ctx, scene, 'table lamp', small)
+    assert not first_zoned and not second_zoned          # no group narrows them
     i, j = ctx.grid.world_to_pixel((3.0, 2.0))
     assert not first[i, j] and second[i, j]            # furniture blocks, surfaces hold
     assert second.sum() == (small[8 + ctx.spec.index('desk')] > 0.5).sum()
@@ -184,14 +185,15 @@ def test_location_mask(synth):
     assert not first[oi, oj]                             # outside the floor
     # No surface for a second-tier category: nothing to sample.
     empty = synth._renderer(64).render(Scene(ROOM, []), ctx.grid)
-    assert not synth._mask(ctx, Scene(ROOM, []), 'table lamp', empty).any()
+    assert not synth._mask(ctx, Scene(ROOM, []), 'table lamp', empty)[0].any()
     # A chair goes only where a table could have it: before the desk's front (x 3.3 .. 4),
     # within its width; nowhere in a room without a table.
-    chair = synth._mask(ctx, scene, 'office chair', small)
+    chair, zoned = synth._mask(ctx, scene, 'office chair', small)
+    assert zoned
     assert chair[tuple(ctx.grid.world_to_pixel((3.6, 2.0)))]
     assert not chair[tuple(ctx.grid.world_to_pixel((1.5, 1.5)))]
     assert not chair[tuple(ctx.grid.world_to_pixel((3.6, 0.9)))]     # beside the desk
-    assert not synth._mask(ctx, Scene(ROOM, []), 'office chair', empty).any()
+    assert not synth._mask(ctx, Scene(ROOM, []), 'office chair', empty)[0].any()
 
 
 def test_the_dimensions_crops_are_the_crops_drawn_at_their_yaws(synth):
