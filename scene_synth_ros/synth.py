@@ -5,14 +5,15 @@ category module draws the next category, or STOP. Object Location: the location 
 a distribution over the room for it, masked to the floor (or, for a second-tier category, to
 the surfaces observed to support it; for a piece of a group kept at insertion, to where a
 partner could have it: ``groups.partner_zone``) and tempered, and locations are drawn from
-it, the first ones moved to the centre of the blob they fell in (``SynthConfig.location_mode``,
-``centre_draws``) and, in bundles with offsets, by the offset predicted there. Object
-Orientation: at each location the orientation module draws a facing, snapped to the room's
-axes when its classifier says so. Object Dimensions: the dimensions module draws a
-footprint (around its decoded mean, by the spread it learned, where it learned one). Object
-Insertion: the catalog model nearest that footprint is placed; among near ties, for a module
-that answers its mean, models that co-occur in the training rooms with those already there
-come first. A placement is rejected
+it, the first ones moved to the centre of the blob they fell in
+(``SynthConfig.location_mode``, ``centre_draws``) and, in bundles with offsets, by the
+offset predicted there; when they all fail for a piece of a group, a few more are drawn
+uniformly over its partner zone (``zone_samples``). Object Orientation: at each location the
+orientation module draws a facing, snapped to the room's axes when its classifier says so.
+Object Dimensions: the dimensions module draws a footprint (around its decoded mean, by the
+spread it learned, where it learned one). Object Insertion: the catalog model nearest that
+footprint is placed; among near ties, for a module that answers its mean, models that
+co-occur in the training rooms with those already there come first. A placement is rejected
 if it collides with first-tier furniture, leaves the floor, enters a door's clear zone,
 breaks the robot promise (``robot``: the configured robot must still drive between the doors
 and reach every object it reached, and the new one), breaks a design rule kept at insertion
@@ -21,7 +22,8 @@ tier) stands less than 70 % on its parent or overlaps its neighbours there; then
 model is tried, then the next location, and if nothing fits the category is drawn again
 without the failed ones. A STOP drawn while a group still owes a partner
 (``SynthConfig.owed_partners``: a coffee table without seating, a double bed without a
-nightstand) is answered with one more draw among the partners' categories. An empty
+nightstand) is answered with one more draw among the partners' categories; a coffee table
+for which that draw found no place is taken out again (``groups.withdrawable``). An empty
 room in which the robot cannot drive between the doors is refused in one sentence.
 
 Three modes: ``generate`` (an empty room), ``complete`` (a partial room: keeps what is
@@ -495,6 +497,8 @@ class Synthesizer:
                     if 0 < broken < owing:
                         owing = broken
                         obj, _ = self._insert_one(ctx, out, allow_stop=False, only=partners)
+                        if obj is None:
+                            self._withdraw(out, added)
                 if obj is None:
                     stopped = why
                     break
@@ -505,6 +509,17 @@ class Synthesizer:
                          'weights': ctx.bundle.config.name, 'robot': kept.to_dict()})
         return Synthesis(out, added, stopped, time.perf_counter() - t0, dict(ctx.timings),
                          kept)
+
+    def _withdraw(self, scene: Scene, added: list[PlacedObject]) -> None:
+        """Take out of ``scene`` (and ``added``) the pieces this synthesis added that still
+        break an owed-partner rule after the draw owed to them found no place
+        (``groups.withdrawable``: coffee tables no lounge seat can reach), with what stands
+        on them. What the scene held before synthesis stays."""
+        mine = {o.id for o in added}
+        gone = {t for t in groups.withdrawable(scene, self.config.owed_partners) if t in mine}
+        gone |= {o.id for o in scene.objects if o.support in gone}
+        scene.objects[:] = [o for o in scene.objects if o.id not in gone]
+        added[:] = [o for o in added if o.id not in gone]
 
     def next_object(self, scene: Scene, seed: int = 0,
                     category: str | None = None) -> PlacedObject | None:

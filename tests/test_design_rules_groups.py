@@ -300,3 +300,16 @@ def test_owed_counts_broken_cases_of_the_owed_rules_and_their_partners():
     assert groups.owed(beds, ('coffee_table_has_seating',)) == (0, frozenset())
     beds.objects += [put('stand', 0.9, 3.8, -90), put('coffee table', 2.0, 1.0, 0)]
     assert groups.owed(beds, rules) == (1, frozenset(groups.LOUNGE_SEATS))
+
+
+def test_withdrawable_coffee_tables_are_those_without_seating_or_a_chair_at_them():
+    rules = tuple(groups.OWED_PARTNERS)
+    scene = living()
+    assert groups.withdrawable(scene, rules) == []                    # sofa_a serves it
+    scene.objects.append(put('coffee table', 4.4, 4.0, 0, name='lonely'))
+    assert groups.withdrawable(scene, rules) == ['lonely']
+    assert groups.withdrawable(scene, ('double_bed_has_nightstand',)) == []
+    scene.objects.append(put('straight chair', 4.4, 3.0, 90))        # seated at its side
+    assert groups.withdrawable(scene, rules) == []
+    beds = bedroom()                                                  # a bed owed a stand
+    assert groups.owed(beds, rules)[0] == 1 and groups.withdrawable(beds, rules) == []

@@ -615,3 +615,20 @@ def test_a_group_still_owed_a_partner_at_stop_draws_one():
         assert all(only is None for _, only, _, _ in calls)
         assert [why for *_, why, _ in calls].count('stop') <= 1
     assert served > 0
+
+
+def test_withdraw_takes_out_added_coffee_tables_without_seating_with_what_stands_on_them(
+        synth):
+    mine = box('coffee table', 3.0, 2.0, 1.0, 0.6, 0.45, oid='added')
+    vase = box('plant', 3.0, 2.0, 0.2, 0.2, 0.4, z=0.45, support='added', oid='vase')
+    theirs = box('coffee table', 1.0, 2.2, 1.0, 0.6, 0.45, oid='theirs')
+    lamp = box('table lamp', 0.3, 2.7, 0.3, 0.3, 0.5, oid='lamp')
+    scene = Scene(ROOM, [theirs, lamp, mine, vase])
+    added = [mine, vase]
+    synth._withdraw(scene, added)
+    assert [o.id for o in scene.objects] == ['theirs', 'lamp'] and added == []
+    # Seated by a lounge seat, it stays.
+    seat = box('armchair', 3.0, 1.1, 0.75, 0.8, yaw=math.pi / 2, oid='seat')
+    scene = Scene(ROOM, [mine, vase, seat])
+    synth._withdraw(scene, [mine, vase, seat])
+    assert [o.id for o in scene.objects] == ['added', 'vase', 'seat']

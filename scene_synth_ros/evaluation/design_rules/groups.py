@@ -395,6 +395,25 @@ def owed(scene: Scene, rules) -> tuple[int, frozenset[str]]:
     return broken, frozenset(partners)
 
 
+# The owed-partner rules whose broken cases synthesis takes out again when the draw owed to
+# them found no place for any partner (``Synthesizer.complete``): a coffee table is there for
+# the seats around it (every one of the corpus has lounge seating), and one that no lounge
+# seat can reach is what a designer would take away. A double bed stays: it is what the room
+# is for, its nightstand the accessory.
+WITHDRAWN = ('coffee_table_has_seating',)
+
+
+def withdrawable(scene: Scene, rules) -> list[str]:
+    """The ids of the cases of ``rules`` (those in ``WITHDRAWN``) that break them and serve
+    nothing else: coffee tables without lounge seating and without a chair seated at them
+    (``chair_at_table`` counts such a chair as kept by the table)."""
+    if 'coffee_table_has_seating' not in rules:
+        return []
+    chairs = _first_tier(scene, CHAIRS)
+    return [t for t, ok in coffee_table_verdicts(scene).items()
+            if not ok and not any(seated_at(c, scene.get(t)) for c in chairs)]
+
+
 # ---- the rules ---------------------------------------------------------------------------
 def _first_tier(scene: Scene, categories) -> list[PlacedObject]:
     return [o for o in scene.objects if o.category in categories and o.support is None]
