@@ -23,8 +23,8 @@ model is tried, then the next location, and if nothing fits the category is draw
 without the failed ones. A STOP drawn while a group still owes a partner
 (``SynthConfig.owed_partners``: a coffee table without seating, a double bed without a
 nightstand) is answered with one more draw among the partners' categories; a coffee table
-for which that draw found no place is taken out again (``groups.withdrawable``). An empty
-room in which the robot cannot drive between the doors is refused in one sentence.
+the finished room still leaves without seating is taken out again (``groups.withdrawable``).
+An empty room in which the robot cannot drive between the doors is refused in one sentence.
 
 Three modes: ``generate`` (an empty room), ``complete`` (a partial room: keeps what is
 there) and ``suggest`` (k distinct proposals for the next object, nothing committed). Each is
@@ -497,13 +497,12 @@ class Synthesizer:
                     if 0 < broken < owing:
                         owing = broken
                         obj, _ = self._insert_one(ctx, out, allow_stop=False, only=partners)
-                        if obj is None:
-                            self._withdraw(out, added)
                 if obj is None:
                     stopped = why
                     break
                 out.objects.append(obj)
                 added.append(obj)
+        self._withdraw(out, added)
         kept = robot.report(out, self.config.robot, self._robot_state(ctx, out))
         out.meta.update({'generator': 'scene_synth_ros', 'seed': int(seed),
                          'weights': ctx.bundle.config.name, 'robot': kept.to_dict()})
@@ -511,10 +510,10 @@ class Synthesizer:
                          kept)
 
     def _withdraw(self, scene: Scene, added: list[PlacedObject]) -> None:
-        """Take out of ``scene`` (and ``added``) the pieces this synthesis added that still
-        break an owed-partner rule after the draw owed to them found no place
-        (``groups.withdrawable``: coffee tables no lounge seat can reach), with what stands
-        on them. What the scene held before synthesis stays."""
+        """Take out of ``scene`` (and ``added``) the pieces this synthesis added that the
+        finished room leaves breaking an owed-partner rule, the draws owed to them having
+        found no partner for them (``groups.withdrawable``: coffee tables without seating),
+        with what stands on them. What the scene held before synthesis stays."""
         mine = {o.id for o in added}
         gone = {t for t in groups.withdrawable(scene, self.config.owed_partners) if t in mine}
         gone |= {o.id for o in scene.objects if o.support in gone}

@@ -395,10 +395,10 @@ def owed(scene: Scene, rules) -> tuple[int, frozenset[str]]:
     return broken, frozenset(partners)
 
 
-# The owed-partner rules whose broken cases synthesis takes out again when the draw owed to
-# them found no place for any partner (``Synthesizer.complete``): a coffee table is there for
-# the seats around it (every one of the corpus has lounge seating), and one that no lounge
-# seat can reach is what a designer would take away. A double bed stays: it is what the room
+# The owed-partner rules whose broken cases synthesis takes out of the finished room, the
+# draws owed to them having found no partner (``Synthesizer.complete``): a coffee table is
+# there for the seats around it (every one of the corpus has lounge seating), and one without
+# any is what a designer would take away. A double bed stays: it is what the room
 # is for, its nightstand the accessory.
 WITHDRAWN = ('coffee_table_has_seating',)
 
