@@ -395,18 +395,14 @@ def owed(scene: Scene, rules) -> tuple[int, frozenset[str]]:
     return broken, frozenset(partners)
 
 
-# The owed-partner rules whose broken cases synthesis takes out of the finished room, the
-# draws owed to them having found no partner (``Synthesizer.complete``): a coffee table is
-# there for the seats around it (every one of the corpus has lounge seating), and one without
-# any is what a designer would take away. A double bed stays: it is what the room
-# is for, its nightstand the accessory.
-WITHDRAWN = ('coffee_table_has_seating',)
-
-
 def withdrawable(scene: Scene, rules) -> list[str]:
-    """The ids of the cases of ``rules`` (those in ``WITHDRAWN``) that break them and serve
-    nothing else: coffee tables without lounge seating and without a chair seated at them
-    (``chair_at_table`` counts such a chair as kept by the table)."""
+    """The ids of the cases of the owed-partner ``rules`` that synthesis takes out of the
+    finished room, the draws owed to them having found no partner (``Synthesizer.complete``):
+    coffee tables without lounge seating and without a chair seated at them
+    (``chair_at_table`` counts such a chair as kept by the table). A coffee table is there for
+    the seats around it (every one of the corpus has lounge seating), and one without any is
+    what a designer would take away; a double bed stays, being what the room is for, its
+    nightstand the accessory."""
     if 'coffee_table_has_seating' not in rules:
         return []
     chairs = _first_tier(scene, CHAIRS)
