@@ -33,8 +33,10 @@ test: lint
 test-fast: install
 	$(PY) -m pytest -q -m "not slow"
 
+# ruff, then the layers and the absence of import cycles (.importlinter).
 lint: install
 	$(VENV)/bin/ruff check .
+	$(VENV)/bin/lint-imports --no-cache
 
 bench: install
 	$(PY) benchmarks/bench_render.py

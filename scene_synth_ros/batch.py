@@ -91,13 +91,14 @@ import tempfile
 import time
 from typing import Callable, Iterator
 
-from . import catalog, lockstep
+from . import lockstep
 from .categories import resolve_room_type
 from .errors import SceneSynthError, quoted, sentence
 from .files import write_atomic
 from .limits import MAX_PAYLOAD_BYTES
 from .networks.config import resolve_device, resolve_runtime
 from .synth import SynthConfig
+from .user_catalog import load_catalog
 
 LAYOUT_SUFFIXES = ('.json', '.yaml', '.yml')
 SCENES, THUMBNAILS = 'scenes', 'png'
@@ -399,7 +400,7 @@ class Worker:
             from .corpus.generate import first_shell
             scene = Scene(first_shell(job.room_type, job.shell_seed, job.index), [])
         else:
-            scene = scene_from_document(job.data, catalog.load(self.spec.synthesis.catalog))
+            scene = scene_from_document(job.data, load_catalog(self.spec.synthesis.catalog))
         furnish = self.synth.generate if self.spec.mode == 'generate' else self.synth.complete
         result = furnish(scene, job.seed)
         files.update(self.files(job.name, result.scene))
@@ -418,7 +419,7 @@ class Worker:
         so that a reader who finds a file finds what it names."""
         from . import export
         from .schema import dump_scene
-        models = catalog.load(self.spec.synthesis.catalog)
+        models = load_catalog(self.spec.synthesis.catalog)
         shared, own = {}, {}
         with tempfile.TemporaryDirectory(prefix='scene-synth-batch-') as tmp:
             root = Path(tmp)

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
-import os
 from typing import Iterable
 import zlib
 
@@ -203,26 +202,3 @@ class Catalog:
 
 
 PROCEDURAL = Catalog()
-
-
-def load(source: str | os.PathLike | Catalog | None) -> Catalog:
-    """The catalog of ``source``: the procedural one for None, a Catalog as it is, else the
-    file ``scene-synth catalog build`` wrote (read once per file version;
-    ``errors.CatalogError`` names what is wrong with it)."""
-    if source is None:
-        return PROCEDURAL
-    if isinstance(source, Catalog):
-        return source
-    path = os.path.abspath(os.fspath(source))
-    try:
-        st = os.stat(path)
-        stamp = (st.st_mtime_ns, st.st_size)
-    except OSError:
-        stamp = None                  # the reader says what is wrong with the path
-    return _load_file(path, stamp)
-
-
-@lru_cache(maxsize=8)
-def _load_file(path: str, stamp) -> Catalog:
-    from .user_catalog.store import read_catalog
-    return read_catalog(path)

@@ -245,7 +245,7 @@ def save_reach_png(scene: Scene, robot, path: str | os.PathLike, dpi: int = DEFA
     title."""
     from shapely import get_parts
 
-    from .robot import driven_floor, report
+    from .rules.robot import driven_floor, report
     found = report(scene, robot)
     fig = Figure(figsize=DEFAULT_FIGSIZE, dpi=dpi)
     ax = fig.add_axes((0.08, 0.08, 0.6, 0.84))

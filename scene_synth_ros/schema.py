@@ -421,7 +421,7 @@ def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str,
     """PlacedObjects of (already schema-valid) object dicts, checked against the room;
     missing ids and model ids (from ``models``, default the procedural catalog) are filled
     in."""
-    models = catalog.load(models)
+    models = catalog.PROCEDURAL if models is None else models
     spec = room_spec(room.room_type)
     seen: dict[str, int] = {}
     for i, d in enumerate(items):

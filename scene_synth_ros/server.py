@@ -23,7 +23,6 @@ import threading
 import time
 from typing import Any, Callable
 
-from . import catalog, robot
 from .catalog import PROCEDURAL, Catalog
 from .categories import (
     ROOM_TYPE_ALIASES,
@@ -45,10 +44,12 @@ from .export import UnknownFormat, parse_formats
 from .files import write_atomic
 from .markers import MARKER_STYLES
 from .networks.config import RUNTIMES, resolve_device
-from .robot import CLEARANCE_RANGE, RADIUS_RANGE, REACH_RANGE, Robot, RobotReport
+from .rules import robot
+from .rules.robot import CLEARANCE_RANGE, RADIUS_RANGE, REACH_RANGE, Robot, RobotReport
 from .scene import PlacedObject, Scene
 from .schema import dump_scene, parse_room_layout
 from .synth import MODULES, SynthConfig, SynthesisCancelled, Synthesizer, check_room_fits
+from .user_catalog import load_catalog
 
 OK, WARN, ERROR = 0, 1, 2               # the levels of diagnostic_msgs/DiagnosticStatus
 DEVICES = ('auto', 'cpu', 'cuda')
@@ -173,7 +174,7 @@ def load_catalog_dir(value: str) -> Catalog:
     elif not path.exists():
         raise ConfigError(f'catalog_dir {quoted(value)} does not exist')
     try:
-        return catalog.load(path)
+        return load_catalog(path)
     except CatalogError as e:
         raise ConfigError(f'catalog_dir {quoted(value)} cannot be used: {e}') from None
 

@@ -48,10 +48,9 @@ import shapely
 from shapely.geometry import Polygon
 import torch
 
-from . import catalog, robot
+from . import catalog
 from .categories import RoomTypeSpec, resolve_room_type, room_spec
 from .errors import SceneSynthError, UnknownCategory, quoted, sentence
-from .evaluation.design_rules import access, groups, walls
 from .geometry import (
     FLOOR_TOLERANCE,
     MIN_SUPPORT,
@@ -75,48 +74,11 @@ from .networks.location import LocationDraws, location_distribution
 from .networks.orientation import decode_angle, snap_angle
 from .networks.runtime import OnnxCalls
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer, quarter_turns, turn_image
-from .robot import Robot, RobotReport, RobotState
+from .rules import groups, robot
+from .rules.insertion import INCREMENTAL_RULES, INSERTION_RULES, rule_categories
+from .rules.robot import Robot, RobotReport, RobotState
 from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
-
-# Design rules insertion can keep: each gives, for a scene, whether each of its cases (a
-# window by its index, a piece of storage by its index among the first tier, a piece of a
-# group by its id) keeps the rule. The group rules also narrow where such a piece's location
-# is drawn (``groups.partner_zone``).
-INSERTION_RULES = {'windows_clear': walls.window_verdicts,
-                   'storage_clearance': access.storage_verdicts,
-                   'wall_contact': walls.wall_contact_verdicts,
-                   'fixture_clearance': access.fixture_verdicts,
-                   'bath_in_corner': groups.corner_verdicts,
-                   'chair_at_table': groups.chair_verdicts,
-                   'nightstand_by_bed': groups.nightstand_verdicts,
-                   'bidet_by_toilet': groups.bidet_verdicts,
-                   'coffee_table_has_seating': groups.seating_verdicts}
-
-# Rules whose verdicts a new piece changes only where it enters a case's clear strip or zone:
-# insertion asks for those cases alone (the verdict functions' ``new``), the same answer for
-# less work.
-INCREMENTAL_RULES = frozenset({'windows_clear', 'storage_clearance', 'fixture_clearance'})
-
-# The only categories whose insertion can change a rule's verdicts (a rule not named here can
-# be changed by any piece): a chair's place at a table depends on chairs and tables alone,
-# and so on. Insertion skips the other rules, which is the same answer for less work.
-# Wall contact's categories depend on the room type (``rule_categories``).
-RULE_CATEGORIES: dict[str, frozenset[str]] = {
-    'bath_in_corner': frozenset({'bathtub', 'shower'}),
-    'chair_at_table': frozenset(groups.CHAIRS + groups.TABLES),
-    'nightstand_by_bed': frozenset(('stand',) + groups.BEDS_WITH_HEAD),
-    'bidet_by_toilet': frozenset({'bidet', 'toilet'}),
-    'coffee_table_has_seating': frozenset(('coffee table',) + groups.LOUNGE_SEATS),
-}
-
-def rule_categories(rule: str, room_type: str) -> frozenset[str] | None:
-    """The categories whose insertion can change ``rule``'s verdicts in a room of
-    ``room_type`` (None: any). Wall furniture is the room type's own: a data set says which
-    of its categories stand against a wall."""
-    if rule == 'wall_contact':
-        return walls.wall_categories(room_type)[0]
-    return RULE_CATEGORIES.get(rule)
-
+from .user_catalog import load_catalog
 
 # What ``Synthesis.timings`` counts seconds of (see the module docstring).
 MODULES = ('render', 'category', 'location', 'orientation', 'dimensions', 'insertion')
@@ -787,7 +749,7 @@ class Synthesizer:
         the best (none but ties where the footprint was drawn from a learned spread), the
         ones that co-occur most with the models in the room come first (the user's models,
         which no training room holds, keep their footprint order)."""
-        ranked = catalog.load(self.config.catalog).ranked(category, width, depth,
+        ranked = load_catalog(self.config.catalog).ranked(category, width, depth,
                                                           ctx.spec.room_type)
         best = catalog.footprint_distance(ranked[0], width, depth)
         drawn = ctx.bundle.networks['dimensions'].log_sigma is not None

@@ -6,12 +6,12 @@ import math
 import numpy as np
 import pytest
 
+from scene_synth_ros import rules as design_rules
 from scene_synth_ros.catalog import ModelVariant
 from scene_synth_ros.corpus.furnish import tidy, with_partners
 from scene_synth_ros.corpus.generate import KEPT_RULES, TABLE_BOUND, generate_corpus
 from scene_synth_ros.corpus.layout import Layout
-from scene_synth_ros.evaluation import design_rules
-from scene_synth_ros.evaluation.design_rules import access, groups
+from scene_synth_ros.rules import access, groups
 from scene_synth_ros.scene import Opening, Room
 
 SOUTH = -math.pi / 2     # facing -y: the back against the north wall

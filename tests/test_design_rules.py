@@ -3,8 +3,8 @@ import math
 
 import pytest
 
-from scene_synth_ros.evaluation import design_rules
-from scene_synth_ros.evaluation.design_rules import Rate, Rule, rates, two_proportion_p
+from scene_synth_ros import rules as design_rules
+from scene_synth_ros.rules import Rate, Rule, rates, two_proportion_p
 from scene_synth_ros.scene import Room, Scene
 
 

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from scene_synth_ros.evaluation.design_rules import access
+from scene_synth_ros.rules import access
 from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
 
 YAW = {'N': math.pi / 2, 'S': -math.pi / 2, 'E': 0.0, 'W': math.pi}

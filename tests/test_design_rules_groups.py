@@ -6,7 +6,7 @@ import pytest
 import shapely
 from shapely.geometry import LineString
 
-from scene_synth_ros.evaluation.design_rules import groups
+from scene_synth_ros.rules import groups
 from scene_synth_ros.scene import PlacedObject, Room, Scene
 
 SIZES = {       # (width, depth, height), within the catalog's ranges

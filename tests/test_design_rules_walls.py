@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 
-from scene_synth_ros.evaluation.design_rules import walls
+from scene_synth_ros.rules import walls
 from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
 
 UP, DOWN, RIGHT, LEFT = math.pi / 2, -math.pi / 2, 0.0, math.pi   # where a front faces

@@ -9,12 +9,12 @@ import numpy as np
 import pytest
 import torch
 
+from scene_synth_ros import rules as design_rules
 from scene_synth_ros.corpus.generate import generate_corpus
 from scene_synth_ros.errors import UnknownRoomType
 from scene_synth_ros.evaluation import (
     classifier,
     components,
-    design_rules,
     distribution,
     plausibility,
 )

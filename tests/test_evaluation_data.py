@@ -15,12 +15,12 @@ import pytest
 import torch
 
 from scene_synth_ros import categories
+from scene_synth_ros import rules as design_rules
 from scene_synth_ros.datasets import description, import_dataset
 from scene_synth_ros.datasets.training import split
-from scene_synth_ros.evaluation import design_rules
 from scene_synth_ros.evaluation.dataset import DataEvalConfig, run_data_evaluation
-from scene_synth_ros.evaluation.design_rules import walls
 from scene_synth_ros.networks.bundle import bundle_specs
+from scene_synth_ros.rules import walls
 from scene_synth_ros.synth import SynthConfig
 
 REAL = Path(__file__).resolve().parent.parent.parent / 'shared' / 'data' / 'real' / 'procthor'

@@ -26,6 +26,7 @@ from scene_synth_ros.meshes import MATERIALS, shipped_name, write_shipped_meshes
 from scene_synth_ros.paths import examples_dir, meshes_dir
 from scene_synth_ros.scene import PlacedObject, Scene
 from scene_synth_ros.schema import load_scene
+from scene_synth_ros.user_catalog import load_catalog
 
 ROOM_NS = ('floor', 'walls', 'doors', 'windows')
 ROOT = Path(__file__).resolve().parent.parent
@@ -390,7 +391,7 @@ def test_markers_module_needs_no_ros():
 # ---- the user's own furniture -----------------------------------------------------------------
 def _user_bed(catalog_file: Path, size=(1.6, 2.0, 1.0)) -> tuple[Scene, catalog.Catalog]:
     """The partial bedroom's room with the user's bed at ``size`` (not its own)."""
-    models = catalog.load(catalog_file)
+    models = load_catalog(catalog_file)
     obj = PlacedObject('double_bed_0', 'double bed', 'oak_bed', (2.1, 2.0, 0.0), 0.6, size)
     return Scene(bedroom().room, [obj]), models
 

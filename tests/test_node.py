@@ -38,6 +38,7 @@ from scene_synth_ros.schema import parse_room_layout, parse_scene  # noqa: E402
 
 pytestmark = pytest.mark.slow     # every test here starts node processes
 from scene_synth_ros.server import PARAMETERS, ServerConfig  # noqa: E402
+from scene_synth_ros.user_catalog import load_catalog  # noqa: E402
 
 LAYOUT = (examples_dir() / 'bedroom_layout.json').read_text()
 L_LAYOUT = (examples_dir() / 'lshaped_living_layout.json').read_text()
@@ -299,7 +300,6 @@ def test_parameters_change_at_run_time_and_bad_values_are_refused(node, tmp_path
 def test_catalog_dir_shows_the_users_furniture_as_its_own_meshes(node, tmp_path):
     from test_user_catalog import make_real_set
 
-    from scene_synth_ros import catalog
     from scene_synth_ros.markers import category_color
     root, path = make_real_set(tmp_path)
     client = node.client
@@ -307,7 +307,7 @@ def test_catalog_dir_shows_the_users_furniture_as_its_own_meshes(node, tmp_path)
     assert refused and 'does not exist' in refused[0]
     assert client.set_parameters({'catalog_dir': str(root), 'marker_style': 'mesh'}) == []
     try:
-        models = catalog.load(path)
+        models = load_catalog(path)
         for _ in range(4):          # a bedroom without a bed, stand, wardrobe or desk: again
             before = client.counts()
             client.publish_layout(LAYOUT, wait=False)

@@ -9,12 +9,13 @@ from raster_robot import CELL
 from raster_robot import check as raster_check
 import torch
 
-from scene_synth_ros import catalog, robot
+from scene_synth_ros import catalog
 from scene_synth_ros.categories import ROOM_TYPES
 from scene_synth_ros.corpus import HELDOUT_SEED
 from scene_synth_ros.corpus.generate import empty_room, generate_room
 from scene_synth_ros.parallel import process_pool
-from scene_synth_ros.robot import OPERATED_FRONT, Robot
+from scene_synth_ros.rules import robot
+from scene_synth_ros.rules.robot import OPERATED_FRONT, Robot
 from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
 from scene_synth_ros.schema import dump_scene, parse_scene
 from scene_synth_ros.synth import SynthConfig, SynthesisError, Synthesizer

@@ -12,6 +12,7 @@ from scene_synth_ros.networks.bundle import BundleError
 from scene_synth_ros.paths import examples_dir, weights_dir
 from scene_synth_ros.schema import parse_room_layout, parse_scene
 from scene_synth_ros.server import ERROR, OK, WARN, ConfigError, SceneServer, ServerConfig, check
+from scene_synth_ros.user_catalog import load_catalog
 
 LAYOUT = (examples_dir() / 'bedroom_layout.json').read_text()
 PARTIAL = (examples_dir() / 'partial_bedroom.json').read_text()
@@ -554,14 +555,13 @@ def _user_server(rec, **config):
 def test_catalog_dir_furnishes_publishes_and_exports_the_users_models(furniture, tmp_path):
     import trimesh
 
-    from scene_synth_ros import catalog
     from scene_synth_ros.schema import SceneValidationError
     root, path = furniture
     rec = Recorder()
     srv = _user_server(rec, catalog_dir=str(root), export_dir=str(tmp_path / 'export'),
                        export_formats='gltf')
     try:
-        models = catalog.load(path)
+        models = load_catalog(path)
         covered = set(models.user_categories)
         assert srv.submit_layout(LAYOUT)
         served = rec.wait(1)

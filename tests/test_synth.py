@@ -9,12 +9,12 @@ import torch
 
 from scene_synth_ros.categories import ROOM_TYPES, room_spec
 from scene_synth_ros.corpus.generate import empty_room, generate_room
-from scene_synth_ros.evaluation.design_rules import groups
 from scene_synth_ros.geometry import check_scene, door_zone
 from scene_synth_ros.networks.bundle import BundleError, load_bundle
 from scene_synth_ros.networks.config import PipelineConfig
 from scene_synth_ros.paths import default_config_path, weights_dir
 from scene_synth_ros.render import Frame, RoomDoesNotFit
+from scene_synth_ros.rules import groups
 from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
 from scene_synth_ros.synth import SynthConfig, SynthesisError, Synthesizer
 
@@ -97,7 +97,7 @@ def test_insertion_asks_only_the_cases_a_new_piece_can_change(tiny_weights):
     # verdict it had before the piece, and those asked get the full answer: rooms furnished
     # without the rules kept (which break them often) and corpus rooms, with each of their
     # first-tier pieces added last.
-    from scene_synth_ros.synth import INCREMENTAL_RULES, INSERTION_RULES
+    from scene_synth_ros.rules.insertion import INCREMENTAL_RULES, INSERTION_RULES
     loose = Synthesizer(tiny_weights, SynthConfig(insertion_rules=()))
     asked = changed = 0
     for rt, i in itertools.product(('bedroom', 'bathroom'), range(10)):
@@ -514,7 +514,7 @@ def test_rendered_channels_are_what_the_networks_see(tiny_weights, tmp_path, mon
 def test_rules_skipped_at_insertion_cannot_change_with_the_new_piece():
     """``rule_categories`` lets insertion skip a rule for a piece of another category: in
     corpus rooms, adding any other piece, object by object, leaves its verdicts unchanged."""
-    from scene_synth_ros.synth import INSERTION_RULES, rule_categories
+    from scene_synth_ros.rules.insertion import INSERTION_RULES, rule_categories
     checked = 0
     for rt in ROOM_TYPES:
         for i in range(8):

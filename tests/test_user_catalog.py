@@ -18,10 +18,10 @@ from scene_synth_ros.catalog import Catalog, UserModel
 from scene_synth_ros.categories import CATEGORIES
 from scene_synth_ros.errors import MAX_SENTENCE, CatalogError
 from scene_synth_ros.meshes import build_parts, variant_for
+from scene_synth_ros.meshes.user import nearest_material
 from scene_synth_ros.scene import PlacedObject
 from scene_synth_ros.schema import load_scene
-from scene_synth_ros.user_catalog import build_catalog, read_catalog, write_catalog
-from scene_synth_ros.user_catalog.mesh import nearest_material
+from scene_synth_ros.user_catalog import build_catalog, load_catalog, read_catalog, write_catalog
 
 TOL = 1e-5
 
@@ -303,7 +303,7 @@ def test_a_broken_catalog_file_is_one_sentence(tmp_path):
         read_catalog(path)
     path.write_text('{"format": ')
     with pytest.raises(CatalogError, match='not valid JSON'):
-        catalog.load(path)
+        load_catalog(path)
 
 
 def test_a_mesh_gone_since_the_build_is_one_sentence_at_export(tmp_path):
@@ -450,7 +450,7 @@ def test_the_real_looking_set_measures_and_reads_back(real_set):
         m = cat.get(model_id)
         assert m.category == category and m.size == pytest.approx(size, abs=TOL)
     assert len(build_parts(cat.get('work_desk'))) == 5           # the file's five meshes
-    assert catalog.load(path) is catalog.load(str(path))          # read once
+    assert load_catalog(path) is load_catalog(str(path))          # read once
 
 
 def test_retrieval_uses_the_users_models_and_falls_back(real_set):
@@ -466,7 +466,7 @@ def test_retrieval_uses_the_users_models_and_falls_back(real_set):
     assert cat.fallback(['double bed', 'sofa', 'stand']) == ['sofa']
     with pytest.raises(KeyError):
         cat.get('no_such_model')
-    assert catalog.load(None) is catalog.PROCEDURAL and catalog.load(cat) is cat
+    assert load_catalog(None) is catalog.PROCEDURAL and load_catalog(cat) is cat
 
 
 def test_a_catalog_made_in_python(real_set):
@@ -588,7 +588,7 @@ def test_catalog_build_generate_and_export_commands(cli, real_set, tmp_path):
     batch = tmp_path / 'batch'
     cli('generate', '--room-type', 'bedroom', '--catalog', out, '-n', '3', '--workers', '1',
         '--export', 'gltf', '--out', batch)
-    models = catalog.load(out)
+    models = load_catalog(out)
     scenes = [load_scene(p, models) for p in sorted((batch / 'scenes').glob('*.json'))]
     assert len(scenes) == 3
     own = {o.model_id for s in scenes for o in s.objects} & set(REAL)

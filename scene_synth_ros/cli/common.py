@@ -43,8 +43,8 @@ def room_types(value: str) -> list[str]:
 
 def load_catalog(path: str | None):
     """The catalog of a ``--catalog`` option: the procedural one without it."""
-    from .. import catalog
-    return catalog.load(path)
+    from ..user_catalog import load_catalog as load  # trimesh and the schemas: not for --help
+    return load(path)
 
 
 def load_scene_file(path: str, catalog=None):
@@ -91,7 +91,7 @@ def write_scene(scene, out: str | None, png: str | None, title: str, catalog=Non
 
 def robot_options(c) -> None:
     """The robot every room is furnished for (``robot.Robot``)."""
-    from ..robot import Robot
+    from ..rules.robot import Robot
     d = Robot()
     c.add_argument('--robot-radius', type=float, default=d.radius,
                    help=f'radius of the round robot that must drive between all doors and '
@@ -105,7 +105,7 @@ def robot_options(c) -> None:
 
 def robot_from(args):
     """The ``robot.Robot`` of ``robot_options``; UserError when they make none."""
-    from ..robot import Robot
+    from ..rules.robot import Robot
     try:
         return Robot(args.robot_radius, args.robot_reach, args.robot_clearance)
     except ValueError as e:

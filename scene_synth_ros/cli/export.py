@@ -114,7 +114,7 @@ def cmd_validate(args) -> int:
 
 
 def cmd_reach(args) -> int:
-    from ..robot import report
+    from ..rules.robot import report
     robot = robot_from(args)
     if args.png and len(args.files) > 1:
         raise UserError('--png draws one scene: give one file')

@@ -1,7 +1,7 @@
 """The floor a designer keeps clear around a piece, reserved when the piece is placed.
 
 A placed piece *reserves* the floor its use needs, as the access rules of
-``evaluation.design_rules`` measure it: the 0.5 m before storage, the activity space before a
+``rules`` measure it: the 0.5 m before storage, the activity space before a
 WC, a basin, a shower or a bath, the 0.4 m beside a bed where one gets in, the chair's place
 before a desk. Whatever is placed later keeps off those zones (but the seat a zone is kept
 for), and a piece fits only where its own zones are on the floor and free. Each zone is a
@@ -20,7 +20,7 @@ import math
 from shapely.geometry import Polygon
 
 from ..categories import CATEGORIES
-from ..evaluation.design_rules.access import (
+from ..rules.access import (
     BED_CLEARANCE,
     ENTRY_STRETCH,
     FIXTURE_CLEARANCE,
@@ -29,8 +29,8 @@ from ..evaluation.design_rules.access import (
     USED_FRONT,
     WALL_CLEARANCE,
 )
-from ..evaluation.design_rules.access import SEATS as TABLE_SEATS
-from ..evaluation.design_rules.groups import HEAD_END
+from ..rules.access import SEATS as TABLE_SEATS
+from ..rules.groups import HEAD_END
 from ..scene import PlacedObject
 
 MARGIN = 0.05

@@ -23,7 +23,7 @@ import numpy as np
 from .. import catalog
 from ..catalog import ModelVariant
 from ..categories import CATEGORIES, paper_spec
-from ..evaluation.design_rules import access, groups
+from ..rules import access, groups
 from ..scene import PlacedObject
 from .layout import Layout
 

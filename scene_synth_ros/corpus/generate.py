@@ -10,9 +10,9 @@ from typing import Iterator
 
 import numpy as np
 
+from .. import rules as design_rules
 from ..categories import CATEGORIES, ROOM_TYPES, resolve_room_type
 from ..errors import UnknownRoomType
-from ..evaluation import design_rules
 from ..geometry import check_scene
 from ..parallel import process_pool
 from ..scene import Room, Scene
@@ -23,7 +23,7 @@ from .shell import sample_shell
 CALIBRATION_FILE = Path(__file__).with_name('calibration.json')
 CIRCULATION = 2.3        # floor area per m^2 of furniture footprint a room is given, at least
 MAX_ATTEMPTS = 8
-# The design rules every corpus room keeps (``evaluation.design_rules``), but two that the
+# The design rules every corpus room keeps (``rules``), but two that the
 # paper's table itself bounds: it has fewer seats than desks and dressing tables in bedrooms,
 # and fewer coffee tables and TV stands than sofas in offices.
 TABLE_BOUND = ('desk_has_seat', 'sofa_faces_table_or_tv')

@@ -11,7 +11,6 @@ from shapely.geometry import LineString, Polygon
 from shapely.prepared import prep
 
 from ..catalog import ModelVariant
-from ..evaluation.design_rules.walls import WINDOW_ZONE_DEPTH
 from ..geometry import (
     MIN_SUPPORT,
     door_zone,
@@ -21,6 +20,7 @@ from ..geometry import (
     shrunk_footprint,
     support_fraction,
 )
+from ..rules.walls import WINDOW_ZONE_DEPTH
 from ..scene import PlacedObject, Room, Scene, Wall, rotation
 from .clearance import Zone, zones
 

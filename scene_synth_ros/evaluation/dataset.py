@@ -236,7 +236,7 @@ def validity(groups: dict[str, Sequence[Scene]]) -> dict:
 def rule_report(heldout: Sequence[Scene], synth: Sequence[Scene]) -> dict:
     """Every design rule in the held-out rooms (the ``corpus`` side of the record) and in
     the synthesized ones."""
-    from . import design_rules
+    from .. import rules as design_rules
     return design_rules.summarize([design_rules.measure(s) for s in heldout],
                                   [design_rules.measure(s) for s in synth])
 

@@ -123,7 +123,7 @@ def _validity(rts: dict) -> list[str]:
 
 def _rules(rts: dict) -> list[str]:
     L = ['## 3. Design rules', '',
-         'Share of the cases that keep each rule (`evaluation/design_rules/`), number of '
+         'Share of the cases that keep each rule (`rules/`), number of '
          'cases in brackets, in the held-out rooms and in the synthesized ones; the '
          'difference in percentage points and the p-value of a two-sided test that the '
          'shares are equal. A rule with no case on either side does not apply to the data '

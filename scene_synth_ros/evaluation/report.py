@@ -319,7 +319,7 @@ def _design_rules(rts: dict, figure_dir: str) -> list[str]:
         return []
     L = ['## 7. Design rules', '',
          'What a designer checks, asked of every case a rule applies to (`scene_synth_ros/'
-         'evaluation/design_rules/`): the share of cases that keep the rule, number of cases '
+         'rules/`): the share of cases that keep the rule, number of cases '
          'in brackets, in held-out corpus rooms and in the same shells synthesized; the '
          'difference in percentage points, and the p-value of a two-sided test that the '
          'two shares are equal. The rules:', '']

@@ -13,6 +13,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
+from .. import rules as design_rules
 from ..categories import ROOM_TYPES, resolve_room_type
 from ..corpus import HELDOUT_SEED
 from ..errors import SceneSynthError
@@ -129,7 +130,6 @@ def evaluate_room_type(room_type: str, cfg: EvalConfig, out: Path, bundle: dict,
         classifier,
         components,
         data,
-        design_rules,
         distribution,
         figures,
         plausibility,

@@ -22,6 +22,7 @@ from pathlib import Path
 from ..catalog import ModelVariant
 from ..files import safe_name, write_atomic
 from ..meshes import material_meshes, mtl_text, obj_text
+from .usd_prims import model_layer_bytes
 
 
 def obj_of(mesh, comment: str) -> str:
@@ -76,7 +77,6 @@ class MeshFolder:
 
     def usd(self, variant: ModelVariant) -> Path:
         """The model as a USD layer (binary crate file)."""
-        from .usd import model_layer_bytes
         path = self.folder / f'{safe_name(variant.model_id)}.usdc'
         if path not in self.written:
             self._write(path, model_layer_bytes(variant))

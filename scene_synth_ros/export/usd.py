@@ -23,80 +23,14 @@ from __future__ import annotations
 
 import errno
 import math
-import os
 from pathlib import Path
-import tempfile
 
-import numpy as np
-
-from ..catalog import Catalog, ModelVariant
-from ..meshes import MATERIALS, material_meshes
+from ..catalog import Catalog
 from ..scene import Scene
 from .architecture import FLOOR_RGBA, WALL_RGBA, floor_slab, wall_boxes
 from .meshfiles import MeshFolder
 from .physics import DEFAULT_PHYSICS, GRAVITY, Body, PhysicsConfig, scene_bodies
-
-
-def _identifier(text: str, taken: set[str]) -> str:
-    """A prim name for ``text``, unique among ``taken``."""
-    from pxr import Tf
-    name = Tf.MakeValidIdentifier(text)
-    out, k = name, 1
-    while out in taken:
-        out, k = f'{name}_{k}', k + 1
-    taken.add(out)
-    return out
-
-
-def _surface(stage, path: str, rgba, metallic: float, roughness: float):
-    from pxr import Gf, Sdf, UsdShade
-    material = UsdShade.Material.Define(stage, path)
-    shader = UsdShade.Shader.Define(stage, f'{path}/Surface')
-    shader.CreateIdAttr('UsdPreviewSurface')
-    shader.CreateInput('diffuseColor', Sdf.ValueTypeNames.Color3f).Set(Gf.Vec3f(*rgba[:3]))
-    shader.CreateInput('opacity', Sdf.ValueTypeNames.Float).Set(float(rgba[3]))
-    shader.CreateInput('metallic', Sdf.ValueTypeNames.Float).Set(float(metallic))
-    shader.CreateInput('roughness', Sdf.ValueTypeNames.Float).Set(float(roughness))
-    material.CreateSurfaceOutput().ConnectToSource(shader.ConnectableAPI(), 'surface')
-    return material
-
-
-def _mesh(stage, path: str, vertices, faces):
-    from pxr import UsdGeom, Vt
-    mesh = UsdGeom.Mesh.Define(stage, path)
-    vertices = np.asarray(vertices, dtype=float)
-    mesh.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(vertices.astype(np.float32)))
-    mesh.CreateFaceVertexCountsAttr(Vt.IntArray([3] * len(faces)))
-    mesh.CreateFaceVertexIndicesAttr(Vt.IntArray([int(i) for i in np.asarray(faces).ravel()]))
-    mesh.CreateSubdivisionSchemeAttr('none')
-    mesh.CreateExtentAttr([tuple(vertices.min(axis=0)), tuple(vertices.max(axis=0))])
-    return mesh
-
-
-def model_layer_bytes(variant: ModelVariant) -> bytes:
-    """The catalog model as a USD crate file: ``/Model`` (the default prim) with one mesh
-    per material, bound to ``/Model/Looks/<material>``."""
-    from pxr import Usd, UsdGeom, UsdShade
-    stage = Usd.Stage.CreateInMemory()
-    UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.z)
-    UsdGeom.SetStageMetersPerUnit(stage, 1.0)
-    root = UsdGeom.Xform.Define(stage, '/Model')
-    stage.SetDefaultPrim(root.GetPrim())
-    taken: set[str] = {'Looks'}
-    for material, part in material_meshes(variant).items():
-        name = _identifier(material, taken)
-        m = MATERIALS[material]
-        look = _surface(stage, f'/Model/Looks/{name}', np.asarray(m.rgba) / 255.0, m.metallic,
-                        m.roughness)
-        mesh = _mesh(stage, f'/Model/{name}', part.vertices, part.faces)
-        UsdShade.MaterialBindingAPI.Apply(mesh.GetPrim()).Bind(look)
-    fd, tmp = tempfile.mkstemp(suffix='.usdc')
-    os.close(fd)
-    try:
-        stage.GetRootLayer().Export(tmp)
-        return Path(tmp).read_bytes()
-    finally:
-        os.unlink(tmp)
+from .usd_prims import identifier, mesh, surface
 
 
 def _place(xformable, translate, yaw: float = 0.0, scale=None) -> None:
@@ -121,10 +55,10 @@ def _collider(stage, path: str, centre, yaw: float, size, physics_material):
 def _room(stage, scene: Scene, physics_material) -> None:
     from pxr import UsdGeom, UsdPhysics, UsdShade
     UsdGeom.Xform.Define(stage, '/World/Room')
-    floor_look = _surface(stage, '/World/Looks/floor', FLOOR_RGBA, 0.0, 0.9)
-    wall_look = _surface(stage, '/World/Looks/wall', WALL_RGBA, 0.0, 0.9)
+    floor_look = surface(stage, '/World/Looks/floor', FLOOR_RGBA, 0.0, 0.9)
+    wall_look = surface(stage, '/World/Looks/wall', WALL_RGBA, 0.0, 0.9)
     slab = floor_slab(scene.room)
-    floor = _mesh(stage, '/World/Room/Floor', slab.vertices, slab.faces)
+    floor = mesh(stage, '/World/Room/Floor', slab.vertices, slab.faces)
     UsdShade.MaterialBindingAPI.Apply(floor.GetPrim()).Bind(floor_look)
     UsdPhysics.CollisionAPI.Apply(floor.GetPrim())
     UsdPhysics.MeshCollisionAPI.Apply(floor.GetPrim()).CreateApproximationAttr('none')
@@ -204,7 +138,7 @@ def export_usd(scene: Scene, path: str | Path, mesh_dir: str | Path | None = Non
     taken: set[str] = set()
     for body in scene_bodies(scene, physics, catalog):
         model_file = './' + meshes.relative(meshes.usd(body.variant))
-        name = _identifier(body.id, taken)
+        name = identifier(body.id, taken)
         _object(stage, f'/World/Objects/{name}', body, model_file, fixed, physics_material)
     if not layer.Save():
         raise OSError(errno.EACCES, f'USD cannot save {path}')

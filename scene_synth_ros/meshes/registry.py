@@ -28,6 +28,7 @@ from .furniture import (
     tables_and_desks,
 )
 from .materials import MATERIALS
+from .user import user_parts
 
 FURNITURE_MODULES = (beds, case_furniture, tables_and_desks, seating,
                      lamps_electronics_appliances, bathroom, living_room_and_office,
@@ -67,7 +68,6 @@ def build_parts(variant: ModelVariant) -> tuple[Part, ...]:
     if min(variant.size) <= 0:
         raise ValueError(f'{variant.model_id}: sizes must be positive, got {variant.size}')
     if isinstance(variant, UserModel):          # the user's mesh, not a builder's sketch
-        from ..user_catalog.mesh import user_parts
         return user_parts(variant)
     b = Builder(variant)
     builder_for(variant.category)(b)

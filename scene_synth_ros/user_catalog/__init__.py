@@ -24,6 +24,6 @@ CATALOG.json`` on ``generate``, ``complete`` and ``export``.
 from __future__ import annotations
 
 from .build import BuildReport, build_catalog
-from .store import read_catalog, write_catalog
+from .store import load_catalog, read_catalog, write_catalog
 
-__all__ = ['BuildReport', 'build_catalog', 'read_catalog', 'write_catalog']
+__all__ = ['BuildReport', 'build_catalog', 'load_catalog', 'read_catalog', 'write_catalog']

@@ -16,6 +16,7 @@ import numpy as np
 from ..catalog import UserModel
 from ..categories import category_info
 from ..errors import number
+from ..meshes.user import load_triangles
 from .axes import parse_axis, to_package_frame
 from .spec import ModelSpec
 
@@ -30,23 +31,6 @@ def placement(up: str, front: str, scale: float, offset) -> np.ndarray:
     m[:3, :3] = scale * to_package_frame(parse_axis(up), parse_axis(front))
     m[:3, 3] = np.asarray(offset, float)
     return m
-
-
-def load_triangles(path: Path) -> list[tuple[str, object]]:
-    """(name, trimesh.Trimesh) of every triangle mesh in the file, with the file's node
-    transforms applied (glTF scenes, OBJ objects); point clouds and lines are left out.
-    Raises whatever trimesh raises on a file it cannot read."""
-    import trimesh
-    loaded = trimesh.load(str(path), force='scene', process=False)
-    out = []
-    for node in loaded.graph.nodes_geometry:
-        transform, name = loaded.graph[node]
-        g = loaded.geometry.get(name)
-        if isinstance(g, trimesh.Trimesh) and len(g.faces) and len(g.vertices):
-            g = g.copy()
-            g.apply_transform(transform)
-            out.append((str(node), g))
-    return out
 
 
 def _file_problem(path: Path) -> str | None:

@@ -23,6 +23,7 @@ their RViz markers show the nearest procedural model instead.
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import lru_cache
 import math
 import os
 from pathlib import Path
@@ -158,3 +159,25 @@ def _model(record: dict[str, Any], folder: Path) -> UserModel:
     return UserModel(model_id, category, size, 0, str(source),
                      tuple(float(v) for v in m.ravel()),
                      str((folder / marker).resolve()) if marker else '')
+
+
+def load_catalog(source: str | os.PathLike | Catalog | None) -> Catalog:
+    """The catalog of ``source``: the procedural one for None, a Catalog as it is, else the
+    file ``scene-synth catalog build`` wrote (read once per file version;
+    ``errors.CatalogError`` names what is wrong with it)."""
+    if source is None:
+        return catalog.PROCEDURAL
+    if isinstance(source, Catalog):
+        return source
+    path = os.path.abspath(os.fspath(source))
+    try:
+        st = os.stat(path)
+        stamp = (st.st_mtime_ns, st.st_size)
+    except OSError:
+        stamp = None                  # the reader says what is wrong with the path
+    return _load_file(path, stamp)
+
+
+@lru_cache(maxsize=8)
+def _load_file(path: str, stamp) -> Catalog:
+    return read_catalog(path)

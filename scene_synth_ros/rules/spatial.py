@@ -8,8 +8,8 @@ import math
 import numpy as np
 from shapely.geometry import LineString
 
-from ...render import room_axis_yaw
-from ...scene import PlacedObject, Room, wrap_angle
+from ..render import room_axis_yaw
+from ..scene import PlacedObject, Room, wrap_angle
 
 
 def side(obj: PlacedObject, which: str) -> LineString:

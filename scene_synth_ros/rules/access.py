@@ -64,11 +64,11 @@ import shapely
 from shapely.geometry import Polygon
 from shapely.prepared import prep
 
-from ... import robot
-from ...geometry import ROBOT_WIDTH, shrunk_footprint
-from ...robot import OPERATED_FRONT, Robot
-from ...scene import PlacedObject, Scene
-from . import BEDS, Outcome, Rule
+from ..geometry import ROBOT_WIDTH, shrunk_footprint
+from ..scene import PlacedObject, Scene
+from . import robot
+from .robot import OPERATED_FRONT, Robot
+from .rule import BEDS, Outcome, Rule
 from .spatial import side
 
 # A footprint that enters a strip by 2 cm or less, or a wall that does, leaves it clear: the

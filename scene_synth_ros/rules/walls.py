@@ -56,11 +56,11 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon
 
-from ...categories import CATEGORIES, RoomTypeSpec, room_spec
-from ...errors import UnknownRoomType
-from ...geometry import ROBOT_WIDTH
-from ...scene import Opening, PlacedObject, Room, Scene, Wall, box_corners
-from . import BEDS, Rule
+from ..categories import CATEGORIES, RoomTypeSpec, room_spec
+from ..errors import UnknownRoomType
+from ..geometry import ROBOT_WIDTH
+from ..scene import Opening, PlacedObject, Room, Scene, Wall, box_corners
+from .rule import BEDS, Rule
 from .spatial import bearing
 
 # A back within 10 cm of the wall reads as against it: skirting boards, sockets and cables

@@ -1,6 +1,6 @@
 """A user model's mesh as the exporters draw it: the file's triangle meshes put in the
-package's object frame (``measure.placement``) and stretched onto the model's box, like a
-procedural model (``meshes.builder.Builder.finish``): ``x in [-depth/2, depth/2]``,
+package's object frame (``user_catalog.measure.placement``) and stretched onto the model's
+box, like a procedural model (``meshes.builder.Builder.finish``): ``x in [-depth/2, depth/2]``,
 ``y in [-width/2, width/2]``, ``z in [0, height]``.
 
 Each mesh of the file is one part. The exporters write the package's named materials
@@ -13,14 +13,30 @@ from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
+import trimesh
 
 from ..catalog import UserModel
 from ..errors import CatalogError, quoted
-from ..meshes.builder import Part
-from ..meshes.materials import MATERIALS
-from .measure import load_triangles
+from .builder import Part
+from .materials import MATERIALS
 
 DEFAULT_MATERIAL = 'paint_grey'
+
+
+def load_triangles(path: Path) -> list[tuple[str, object]]:
+    """(name, trimesh.Trimesh) of every triangle mesh in the file, with the file's node
+    transforms applied (glTF scenes, OBJ objects); point clouds and lines are left out.
+    Raises whatever trimesh raises on a file it cannot read."""
+    loaded = trimesh.load(str(path), force='scene', process=False)
+    out = []
+    for node in loaded.graph.nodes_geometry:
+        transform, name = loaded.graph[node]
+        g = loaded.geometry.get(name)
+        if isinstance(g, trimesh.Trimesh) and len(g.faces) and len(g.vertices):
+            g = g.copy()
+            g.apply_transform(transform)
+            out.append((str(node), g))
+    return out
 
 
 def nearest_material(rgba) -> str:

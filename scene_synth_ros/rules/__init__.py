@@ -22,89 +22,22 @@ where it needs one, and says so.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-import math
-from typing import Callable, Iterable, Sequence
+from typing import Iterable, Sequence
 
-from ...categories import CategoryInfo, category_info
-from ...errors import UnknownRoomType
-from ...scene import Scene
+from ..scene import Scene
+from . import access, groups, walls
+from .rule import BEDS, Comparison, Outcome, Rate, Rule, category_of, two_proportion_p
 
-Outcome = tuple[int, int]          # (cases that keep the rule, cases) in one room
+__all__ = ['BEDS', 'RULES', 'Comparison', 'Outcome', 'Rate', 'Rule', 'access', 'broken',
+           'category_of', 'compare', 'groups', 'measure', 'rates', 'rules', 'summarize',
+           'totals', 'two_proportion_p', 'walls']
 
-# Every kind of bed, for the rules of every family that ask about beds.
-BEDS = ('double bed', 'single bed', 'bunker bed', 'baby bed', 'daybed')
-
-
-def category_of(name: str, room_type: str) -> CategoryInfo | None:
-    """What is known of category ``name`` in a room of ``room_type``: the room type's own
-    category set first (a data set's categories, sizes and wall flags live there), then the
-    paper's table; None when neither knows it. For the paper's room types this is
-    ``categories.CATEGORIES[name]``."""
-    try:
-        try:
-            return category_info(name, room_type)
-        except UnknownRoomType:     # a room of a type this process does not define
-            return category_info(name)
-    except KeyError:
-        return None
-
-
-@dataclass(frozen=True)
-class Rule:
-    """One design rule: ``measure(scene)`` answers ``question`` for every case in a room."""
-
-    name: str                              # short identifier, e.g. 'wall_contact'
-    family: str                            # 'walls', 'groups' or 'access'
-    question: str                          # one sentence: the case and what "yes" means
-    measure: Callable[[Scene], Outcome]
-
-
-@dataclass(frozen=True)
-class Rate:
-    kept: int
-    cases: int
-
-    @property
-    def value(self) -> float:
-        return self.kept / self.cases if self.cases else math.nan
-
-
-@dataclass(frozen=True)
-class Comparison:
-    rule: Rule
-    corpus: Rate
-    synthesized: Rate
-
-    @property
-    def difference(self) -> float:
-        """Synthesized minus corpus rate, in [-1, 1] (NaN when either has no case)."""
-        return self.synthesized.value - self.corpus.value
-
-    @property
-    def p_value(self) -> float:
-        return two_proportion_p(self.corpus.kept, self.corpus.cases,
-                                self.synthesized.kept, self.synthesized.cases)
-
-
-def two_proportion_p(k1: int, n1: int, k2: int, n2: int) -> float:
-    """Two-sided p-value of the z-test that two binomial proportions are equal (pooled
-    variance); 1.0 where it is undefined (a sample without cases, or both proportions 0 or 1)."""
-    if n1 == 0 or n2 == 0:
-        return 1.0
-    p = (k1 + k2) / (n1 + n2)
-    se = math.sqrt(p * (1 - p) * (1 / n1 + 1 / n2))
-    if se == 0:
-        return 1.0
-    z = (k1 / n1 - k2 / n2) / se
-    return math.erfc(abs(z) / math.sqrt(2))
+RULES: tuple[Rule, ...] = walls.RULES + groups.RULES + access.RULES
 
 
 def rules() -> tuple[Rule, ...]:
-    """Every rule, family by family (imported here, not at module load, so that each family
-    module can import ``Rule`` from this one)."""
-    from . import access, groups, walls
-    return walls.RULES + groups.RULES + access.RULES
+    """Every rule, family by family."""
+    return RULES
 
 
 def measure(scene: Scene, selected: Sequence[Rule] | None = None) -> dict[str, Outcome]:

@@ -66,9 +66,9 @@ import numpy as np
 import shapely
 from shapely.geometry import LineString, Polygon
 
-from ...categories import CATEGORIES
-from ...scene import PlacedObject, Scene, wrap_angle
-from . import Outcome, Rule, category_of
+from ..categories import CATEGORIES
+from ..scene import PlacedObject, Scene, wrap_angle
+from .rule import Outcome, Rule, category_of
 from .spatial import bearing, off_axes
 
 # ---- thresholds ------------------------------------------------------------------------

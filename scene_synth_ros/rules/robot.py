@@ -30,8 +30,8 @@ import shapely
 from shapely.geometry import Polygon
 from shapely.prepared import prep
 
-from .geometry import door_parts, free_space, free_space_less, owners_connected
-from .scene import PlacedObject, Scene, box_corners
+from ..geometry import door_parts, free_space, free_space_less, owners_connected
+from ..scene import PlacedObject, Scene, box_corners
 
 # What is used at its front: one must stand before it (open doors and drawers, sit on a WC,
 # work at a desk). The design rules' access module asks the same of the same categories.
@@ -55,7 +55,7 @@ class Robot:
     """A round robot: its radius, how close its body must come to an object to use it (arm's
     reach), and the clearance it keeps from obstacles while driving (all metres)."""
 
-    # The defaults are the design rules' robot (``evaluation.design_rules.access.RULE_ROBOT``):
+    # The defaults are the design rules' robot (``rules.access.RULE_ROBOT``):
     # rooms kept reachable for an arm's reach of 0.5 m left 4 % of offices with a front that
     # the rules' 0.15 m does not reach (README, "The robot promise").
     radius: float = 0.2
