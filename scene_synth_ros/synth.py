@@ -312,14 +312,40 @@ class _Context:
             self.timings[module] += time.perf_counter() - t
 
 
+class SynthesisObserver:
+    """What a ``Synthesizer`` tells its ``observer`` while it furnishes rooms: subclass it and
+    override the events wanted (each does nothing here). Observing changes no room; with
+    rooms in lockstep the events of the group's rooms interleave."""
+
+    def category_drawn(self, category: str | None) -> None:
+        """The category module drew ``category`` (None: STOP), also when it draws again
+        after a category that found no place, and for a draw owed to a partner."""
+
+    def placement_checked(self, obj: PlacedObject, refused_by: str | None) -> None:
+        """``fits`` judged a candidate placement: ``refused_by`` is None where it stands,
+        else the first check that refused it: ``floor``, ``support`` or ``sibling`` (second
+        tier), ``collision``, ``door``, the name of a design rule kept at insertion, or
+        ``robot`` (the robot promise)."""
+
+    def object_added(self, obj: PlacedObject) -> None:
+        """``complete`` (or ``generate``) added ``obj`` to the room; the pieces the finished
+        room withdraws again (coffee tables left without seating) are told here too."""
+
+
 class Synthesizer:
-    """Furnishes rooms with the shipped (or given) weights. Bundles load on first use."""
+    """Furnishes rooms with the shipped (or given) weights. Bundles load on first use.
+
+    ``observer``, a ``SynthesisObserver`` (also settable as the attribute of that name), is
+    told of every category drawn, placement checked and object added; None, the default,
+    costs nothing."""
 
     def __init__(self, weights_dir: str | Path | None = None,
-                 config: SynthConfig | None = None):
+                 config: SynthConfig | None = None,
+                 observer: SynthesisObserver | None = None):
         from .paths import weights_dir as default_weights
         self.weights_dir = Path(weights_dir) if weights_dir else default_weights()
         self.config = config or SynthConfig()
+        self.observer = observer
         unknown = set(self.config.insertion_rules) - set(INSERTION_RULES)
         if unknown:
             raise SynthesisError(f'insertion cannot keep the design rule {quoted(min(unknown))}; '
@@ -502,6 +528,8 @@ class Synthesizer:
                     break
                 out.objects.append(obj)
                 added.append(obj)
+                if self.observer is not None:
+                    self.observer.object_added(obj)
         self._withdraw(out, added)
         kept = robot.report(out, self.config.robot, self._robot_state(ctx, out))
         out.meta.update({'generator': 'scene_synth_ros', 'seed': int(seed),
@@ -582,6 +610,9 @@ class Synthesizer:
             if not bool(allowed.any()):
                 break
             c = self._next_category(ctx, category_logits, allowed)
+            if self.observer is not None:
+                self.observer.category_drawn(ctx.spec.names[c] if c < len(ctx.spec.names)
+                                             else None)
             if c == len(ctx.spec.names):         # the index after the categories: STOP
                 return None, 'stop'
             if location is None:
@@ -846,16 +877,24 @@ class Synthesizer:
     def fits(self, ctx: _Context, scene: Scene, obj: PlacedObject,
              parent: PlacedObject | None = None) -> bool:
         """The insertion's rejection rules (see the module docstring)."""
+        refused_by = self._refusal(ctx, scene, obj, parent)
+        if self.observer is not None:
+            self.observer.placement_checked(obj, refused_by)
+        return refused_by is None
+
+    def _refusal(self, ctx: _Context, scene: Scene, obj: PlacedObject,
+                 parent: PlacedObject | None) -> str | None:
+        """The first of ``fits``'s checks that refuses ``obj``, or None."""
         if not ctx.floor.covers(obj.footprint()):
-            return False
+            return 'floor'
         if obj.support is not None:
             if parent is None or support_fraction(obj, parent) < MIN_SUPPORT:
-                return False
-            return not overlaps_any(obj, scene.children_of(parent.id))
+                return 'support'
+            return 'sibling' if overlaps_any(obj, scene.children_of(parent.id)) else None
         if overlaps_any(obj, scene.first_tier):
-            return False
+            return 'collision'
         if any(enters_zone(obj, z) for z in ctx.zones):
-            return False
+            return 'door'
         after = Scene(scene.room, scene.objects + [obj])
         # The design rules kept at insertion, then the robot promise: what held before this
         # object must hold after it, and the object must keep them itself.
@@ -870,15 +909,15 @@ class Synthesizer:
             before = ctx.rules[key]
             now = verdicts(after, new=obj) if name in INCREMENTAL_RULES else verdicts(after)
             if not all(ok or before.get(case) is False for case, ok in now.items()):
-                return False
+                return name
         if ctx.room.doors:
             before = self._robot_state(ctx, scene)
             now = robot.state_after(before, after, self.config.robot)
             if not robot.kept(before, now, len(after.first_tier) - 1):
-                return False
+                return 'robot'
             # The next step starts from it if ``obj`` goes in.
             ctx.robot[_first_tier_key(after)] = now
-        return True
+        return None
 
     def _robot_state(self, ctx: _Context, scene: Scene) -> RobotState:
         key = _first_tier_key(scene)
