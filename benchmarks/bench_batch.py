@@ -34,12 +34,9 @@ import resource
 import sys
 import tempfile
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-
-from scene_synth_ros.batch import BatchConfig, Manifest, Source, run_batch  # noqa: E402
-from scene_synth_ros.errors import SceneSynthError  # noqa: E402
-from scene_synth_ros.synth import SynthConfig  # noqa: E402
+from scene_synth_ros.batch import BatchConfig, Manifest, Source, run_batch
+from scene_synth_ros.errors import SceneSynthError
+from scene_synth_ros.synth import SynthConfig
 
 WARM = 100          # rooms after which a worker's memory should stay flat
 

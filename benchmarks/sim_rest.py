@@ -17,14 +17,11 @@ import sys
 import tempfile
 import time
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-
-from scene_synth_ros.categories import ROOM_TYPES  # noqa: E402
-from scene_synth_ros.corpus import HELDOUT_SEED  # noqa: E402
-from scene_synth_ros.corpus.generate import empty_room  # noqa: E402
-from scene_synth_ros.export import FORMATS, write  # noqa: E402
-from scene_synth_ros.export.rest import RestLimits, mujoco_rest, pybullet_rest  # noqa: E402
+from scene_synth_ros.categories import ROOM_TYPES
+from scene_synth_ros.corpus import HELDOUT_SEED
+from scene_synth_ros.corpus.generate import empty_room
+from scene_synth_ros.export import FORMATS, write
+from scene_synth_ros.export.rest import RestLimits, mujoco_rest, pybullet_rest
 
 ENGINES = {'mjcf': ('MuJoCo', mujoco_rest), 'urdf': ('PyBullet', pybullet_rest)}
 

@@ -12,10 +12,7 @@ import json
 from pathlib import Path
 import sys
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-
-from scene_synth_ros.networks import NETWORKS as MODULES  # noqa: E402
+from scene_synth_ros.networks import NETWORKS as MODULES
 
 
 def module_seconds(logs: list[Path]) -> dict[str, float]:

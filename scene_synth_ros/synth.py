@@ -143,7 +143,7 @@ def against_walls(room: Room, obj: PlacedObject, reach: float,
     The location module sees the room at about 9 cm a pixel, so furniture meant to stand
     against a wall lands a few centimetres off it, where the training rooms never put
     anything (their wall gaps are 0-2 cm), or a few centimetres through it, where it is
-    refused and the category is lost (``benchmarks/shortfall.py``: most failed insertions are
+    refused and the category is lost (``docs/design/investigations.md``: most failed insertions are
     large pieces a median 4-10 cm past a wall). This closes that gap either way and nothing
     else."""
     pos = np.array(obj.position[:2], dtype=float)
@@ -222,14 +222,14 @@ class SynthConfig:
     # ``location_samples`` there all failed (a departure from the paper, as the zones are):
     # its heat map puts a seat mid-front of a desk, where the corpus has it, and at a desk
     # whose only free front is near an end, twelve draws never got there
-    # (``benchmarks/seats.py``).
+    # (``docs/design/investigations.md``).
     zone_samples: int = 8
     models_per_location: int = 3        # catalog models tried at one location
     category_attempts: int = 4          # category draws per insertion before giving up
     # Log-footprint slack within which co-occurrence decides, for dimensions modules that
     # answer their mean; one that draws from its learned spread (``dimensions_noise``) has
     # the nearest model: its draw is the size, and co-occurrence would hand near ties to the
-    # corpus's more frequent narrow models (``benchmarks/model_sizes.py``).
+    # corpus's more frequent narrow models (``docs/design/investigations.md``).
     fit_slack: float = 0.15
     snap_threshold: float = 0.5         # snap when the classifier's probability is above this
     wall_reach: float = 0.25            # push first-tier objects this close to a wall onto it
@@ -363,7 +363,7 @@ class Synthesizer:
         self._calls: dict[str, dict | OnnxCalls] = {}   # what ``ask`` gets, per room type
         # On the CPU the images are drawn, and the networks' weights laid out, channels-last:
         # oneDNN convolves 46-channel images so laid out 1.3-2.2x faster
-        # (``benchmarks/batch_gain.py --channels-last``), and drawn that way they need no
+        # (``docs/design/investigations.md``), and drawn that way they need no
         # copy to get there.
         self._channels_last = self.device.type == 'cpu'
         self._renderers: dict[int, TopDownRenderer] = {}

@@ -658,14 +658,16 @@ class Recorder(SynthesisObserver):
 
 
 def test_an_observer_is_told_each_draw_check_and_addition_and_changes_no_room(tiny_weights):
-    plain = Synthesizer(tiny_weights)
     recorder = Recorder()
     watched = Synthesizer(tiny_weights, observer=recorder)
     room = empty_room('bathroom', 3)
     refusals = set()
-    for seed in range(4):
+    for seed in range(2):
+        watched.observer = None
+        a = watched.generate(room, seed=seed)
+        watched.observer = recorder
         recorder.events.clear()
-        a, b = plain.generate(room, seed=seed), watched.generate(room, seed=seed)
+        b = watched.generate(room, seed=seed)
         assert [o.to_dict() for o in a.scene.objects] == [o.to_dict() for o in b.scene.objects]
         told = [oid for oid, in recorder.of('added')]
         # Told of every addition, the ones the finished room withdrew again too.
