@@ -128,7 +128,7 @@ def soak_report(out: Path) -> None:
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     ap.add_argument('-n', type=int, default=200, help='rooms per throughput run (0: none)')
     ap.add_argument('--workers', type=int, nargs='+', default=[1, 2])
     ap.add_argument('--lockstep', type=int, nargs='+', default=[1, 8, 32])

@@ -31,7 +31,7 @@ def folder_bytes(folder: Path) -> int:
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     ap.add_argument('-n', type=int, default=50, help='rooms per room type')
     ap.add_argument('--room-type', default='all')
     ap.add_argument('--seconds', type=float, default=2.0, help='simulated time per room')

@@ -28,7 +28,7 @@ def module_seconds(logs: list[Path]) -> dict[str, float]:
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     ap.add_argument('--run-dir', default='runs/compact')
     args = ap.parse_args()
     if not Path(args.run_dir).is_dir():
