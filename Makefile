@@ -38,12 +38,12 @@ lint: install
 	$(VENV)/bin/ruff check .
 	$(VENV)/bin/lint-imports --no-cache
 
+# The quicker benchmarks; benchmarks/README.md lists every one, with what it prints.
 bench: install
 	$(PY) benchmarks/bench_render.py
 	$(PY) benchmarks/bench_corpus.py
 	$(PY) benchmarks/bench_synth.py
 	$(PY) benchmarks/bench_training.py
-	$(PY) benchmarks/module_diagnostics.py
 	$(PY) benchmarks/bench_node.py
 
 gallery: install

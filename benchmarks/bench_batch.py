@@ -34,12 +34,9 @@ import resource
 import sys
 import tempfile
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-
-from scene_synth_ros.batch import BatchConfig, Manifest, Source, run_batch  # noqa: E402
-from scene_synth_ros.errors import SceneSynthError  # noqa: E402
-from scene_synth_ros.synth import SynthConfig  # noqa: E402
+from scene_synth_ros.batch import BatchConfig, Manifest, Source, run_batch
+from scene_synth_ros.errors import SceneSynthError
+from scene_synth_ros.synth import SynthConfig
 
 WARM = 100          # rooms after which a worker's memory should stay flat
 
@@ -131,7 +128,7 @@ def soak_report(out: Path) -> None:
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     ap.add_argument('-n', type=int, default=200, help='rooms per throughput run (0: none)')
     ap.add_argument('--workers', type=int, nargs='+', default=[1, 2])
     ap.add_argument('--lockstep', type=int, nargs='+', default=[1, 8, 32])

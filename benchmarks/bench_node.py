@@ -9,9 +9,7 @@
         [--torch-threads 1] [--domain-id N]
 """
 import argparse
-import json
 import os
-from pathlib import Path
 import platform
 import random
 import signal
@@ -20,43 +18,9 @@ import sys
 import tempfile
 import time
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+from benchlib import invalid_layout, layout_text, rss_mb
 
-from scene_synth_ros.corpus import HELDOUT_SEED  # noqa: E402
-from scene_synth_ros.corpus.generate import empty_room  # noqa: E402
-from scene_synth_ros.ros_client import SceneSynthClient, start_node, stop_node  # noqa: E402
-from scene_synth_ros.scene import Scene  # noqa: E402
-from scene_synth_ros.schema import dump_scene  # noqa: E402
-
-
-def rss_mb(pid: int) -> float:
-    for line in Path(f'/proc/{pid}/status').read_text().splitlines():
-        if line.startswith('VmRSS:'):
-            return int(line.split()[1]) / 1024
-    raise RuntimeError('no VmRSS')
-
-
-def layout_text(room_type: str, index: int) -> str:
-    d = json.loads(dump_scene(Scene(empty_room(room_type, HELDOUT_SEED, index), [])))
-    return json.dumps(d['room'])
-
-
-def invalid_layout(rng: random.Random, k: int) -> str:
-    good = json.loads(layout_text('bedroom', k))
-    kinds = [
-        lambda: '{"room_type": "bedroom", "floor": [[0, 0]',                    # not JSON
-        lambda: json.dumps({'room_type': 'bedroom'}),                            # schema
-        lambda: json.dumps({**good, 'floor': [[0, 0], [4, 4], [4, 0], [0, 4]],
-                            'doors': [], 'windows': []}),                        # crossing
-        lambda: json.dumps({**good, 'wall_height': 'high'}),                     # type
-        lambda: json.dumps(good).replace(str(good['wall_height']), 'NaN', 1),    # NaN
-        lambda: json.dumps({**good, 'room_type': 'garage'}),                     # room type
-        lambda: json.dumps({'room_type': 'bathroom', 'floor': [[0, 0], [0.5, 0], [0.5, 0.5],
-                                                               [0, 0.5]]}),      # too small
-    ]
-    return rng.choice(kinds)()
+from scene_synth_ros.ros_client import SceneSynthClient, start_node, stop_node
 
 
 def pct(values, q):
@@ -65,6 +29,9 @@ def pct(values, q):
 
 
 def main() -> int:
+    # The node and its clients find each other on this machine only (loopback); the
+    # node's process and the clients' inherit it.
+    os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument('--rooms', type=int, default=40, help='bedroom layouts timed')
     ap.add_argument('--calls', type=int, default=60, help='next_object calls timed')

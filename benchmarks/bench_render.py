@@ -1,25 +1,23 @@
 """Speed of the top-down renderer on a furnished 15-object bedroom.
 
-Prints the median milliseconds per render (over at least 200 renders) at 64 and 256 px for:
+Prints the median milliseconds per render (over ``--repeats`` renders, default 300) at 64 and
+256 px for:
 the global view with a warm room cache (the synthesis loop's case), the global view with the
 cache cleared before every render (cold), and ``render_local`` at a new point and yaw every
 time (each one is a new frame, so the architecture is rasterised anew).
 
-Run: ``.venv/bin/python benchmarks/bench_render.py``
+    .venv/bin/python benchmarks/bench_render.py [--repeats 300]
 """
 from __future__ import annotations
 
+import argparse
 import math
-import os
 import statistics
-import sys
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-
-from scene_synth_ros import catalog  # noqa: E402
-from scene_synth_ros.render import TopDownRenderer, num_channels  # noqa: E402
-from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene  # noqa: E402
+from scene_synth_ros import catalog
+from scene_synth_ros.render import TopDownRenderer, num_channels
+from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
 
 REPEATS = 300
 
@@ -72,7 +70,7 @@ def median_ms(fn, repeats: int = REPEATS) -> float:
     return statistics.median(times) * 1e3
 
 
-def timings_line(scene: Scene, res: int) -> str:
+def timings_line(scene: Scene, res: int, repeats: int = REPEATS) -> str:
     """The three medians at ``res`` px, as one line."""
     r = TopDownRenderer(res)
 
@@ -86,18 +84,21 @@ def timings_line(scene: Scene, res: int) -> str:
     def local(k):
         r.render_local(scene, (1.0 + 0.01 * (k % 200), 1.5), 0.037 * k)
 
-    return (f'{res:4d} px: global warm {median_ms(warm):7.3f} ms | '
-            f'global cold {median_ms(cold):7.3f} ms | '
-            f'render_local {median_ms(local):7.3f} ms')
+    return (f'{res:4d} px: global warm {median_ms(warm, repeats):7.3f} ms | '
+            f'global cold {median_ms(cold, repeats):7.3f} ms | '
+            f'render_local {median_ms(local, repeats):7.3f} ms')
 
 
 def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument('--repeats', type=int, default=REPEATS, help='timed renders per figure')
+    args = ap.parse_args()
     scene = bedroom_scene()
     assert len(scene) == 15
     print(f'bedroom scene: {len(scene)} objects, {num_channels("bedroom")} channels, '
-          f'median of {REPEATS} renders')
+          f'median of {args.repeats} renders')
     for res in (64, 256):
-        print(timings_line(scene, res))
+        print(timings_line(scene, res, args.repeats))
 
 
 if __name__ == '__main__':

@@ -14,22 +14,17 @@ alone, for the wall time per room, the time per module and the peak memory.
 import argparse
 from collections import Counter
 import os
-from pathlib import Path
 import platform
 import resource
 import statistics
-import sys
 import time
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-
-from scene_synth_ros.categories import ROOM_TYPES, kl_divergence  # noqa: E402
-from scene_synth_ros.corpus import HELDOUT_SEED  # noqa: E402
-from scene_synth_ros.corpus.generate import empty_room, generate_corpus  # noqa: E402
-from scene_synth_ros.corpus.stats import collect  # noqa: E402
-from scene_synth_ros.geometry import check_scene  # noqa: E402
-from scene_synth_ros.parallel import process_pool  # noqa: E402
+from scene_synth_ros.categories import ROOM_TYPES, kl_divergence
+from scene_synth_ros.corpus import HELDOUT_SEED
+from scene_synth_ros.corpus.generate import empty_room, generate_corpus
+from scene_synth_ros.corpus.stats import collect
+from scene_synth_ros.geometry import check_scene
+from scene_synth_ros.parallel import process_pool
 
 _SYNTH = None
 

@@ -11,26 +11,23 @@ on one core. Corpus generation and validation are not included.
 """
 import argparse
 from pathlib import Path
-import sys
 import tempfile
 import time
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
+import torch
 
-import torch  # noqa: E402
-
-from scene_synth_ros.networks.bundle import NETWORKS, build_networks  # noqa: E402
-from scene_synth_ros.networks.config import PipelineConfig  # noqa: E402
-from scene_synth_ros.networks.examples import ExampleSource  # noqa: E402
-from scene_synth_ros.networks.train import load_corpus, train_module  # noqa: E402
+from scene_synth_ros.networks.bundle import NETWORKS, build_networks
+from scene_synth_ros.networks.config import PipelineConfig
+from scene_synth_ros.networks.examples import ExampleSource
+from scene_synth_ros.networks.train import load_corpus, train_module
+from scene_synth_ros.paths import default_config_path
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument('--room-type', default='bedroom')
     ap.add_argument('--steps', type=int, default=30)
-    ap.add_argument('--config', default=str(ROOT / 'config' / 'compact.yaml'))
+    ap.add_argument('--config', default=str(default_config_path()))
     args = ap.parse_args()
     torch.set_num_threads(1)
     cfg = PipelineConfig.from_yaml(args.config)

@@ -37,7 +37,7 @@ def _close(a: list[dict], b: list[dict], mm: float, mrad: float) -> bool:
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     ap.add_argument('before', type=Path)
     ap.add_argument('after', type=Path)
     ap.add_argument('--mm', type=float, default=1.0)

@@ -32,7 +32,7 @@ def run(room_type: str, seed: int, out: Path, runtime: str, cache: str) -> float
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     ap.add_argument('-n', type=int, default=5, help='runs of each setting')
     ap.add_argument('--room-type', default='bedroom')
     args = ap.parse_args()

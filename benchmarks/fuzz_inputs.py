@@ -16,18 +16,16 @@ import sys
 import tempfile
 import time
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-sys.path.insert(0, str(ROOT / 'tests'))
+from benchlib import tests_module
+from hypothesis import HealthCheck, given, seed, settings
+from hypothesis import strategies as st
 
-from fuzz import JSON, layouts  # noqa: E402
-from hypothesis import HealthCheck, given, seed, settings  # noqa: E402
-from hypothesis import strategies as st  # noqa: E402
+from scene_synth_ros.errors import MAX_SENTENCE, SceneSynthError
+from scene_synth_ros.export import export_gltf, export_sdf
+from scene_synth_ros.markers import scene_markers
+from scene_synth_ros.schema import dump_scene, parse_room_layout, parse_scene
 
-from scene_synth_ros.errors import MAX_SENTENCE, SceneSynthError  # noqa: E402
-from scene_synth_ros.export import export_gltf, export_sdf  # noqa: E402
-from scene_synth_ros.markers import scene_markers  # noqa: E402
-from scene_synth_ros.schema import dump_scene, parse_room_layout, parse_scene  # noqa: E402
+fuzz = tests_module('fuzz')
 
 
 def _brief(payload) -> str:
@@ -86,13 +84,13 @@ def main() -> int:
     with tempfile.TemporaryDirectory() as tmp:
         @seed(args.seed)
         @opts
-        @given(layouts(wild=False) | layouts())
+        @given(fuzz.layouts(wild=False) | fuzz.layouts())
         def fuzz_layouts(layout):
             tally.run(layout, Path(tmp))
 
         @seed(args.seed)
         @settings(opts, max_examples=max(args.n // 4, 1))
-        @given(st.one_of(JSON, st.text(max_size=400)))
+        @given(st.one_of(fuzz.JSON, st.text(max_size=400)))
         def fuzz_payloads(payload):
             tally.run(payload, Path(tmp))
 

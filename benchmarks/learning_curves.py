@@ -17,7 +17,6 @@ from pathlib import Path
 import sys
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
 
 
 def curve(path: Path, module: str) -> list[dict]:

@@ -32,15 +32,10 @@ import tempfile
 import threading
 import time
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-sys.path.insert(0, str(ROOT / 'tests'))
-os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+from benchlib import invalid_layout, layout_text, rss_mb, tests_module
 
-from bench_node import invalid_layout, layout_text, rss_mb  # noqa: E402
-
-from scene_synth_ros.categories import ROOM_TYPES  # noqa: E402
-from scene_synth_ros.ros_client import (  # noqa: E402
+from scene_synth_ros.categories import ROOM_TYPES
+from scene_synth_ros.ros_client import (
     ClientError,
     SceneSynthClient,
     start_node,
@@ -136,10 +131,10 @@ def _diag_bytes(client: SceneSynthClient) -> int:
 
 
 def fuzz(domain: int, proc, n: int) -> None:
-    from fuzz import layouts
     from hypothesis import HealthCheck, given, settings
     if n <= 0:
         return
+    layouts = tests_module('fuzz').layouts
     deaths = wedges = sent = 0
     worst_diag = 0
     t0 = time.perf_counter()
@@ -235,6 +230,9 @@ def _call_quietly(domain: int) -> None:
 
 
 def main() -> int:
+    # The node and its clients find each other on this machine only (loopback); the
+    # node's process and the clients' inherit it.
+    os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument('--clients', type=int, default=10)
     ap.add_argument('--calls', type=int, default=50)

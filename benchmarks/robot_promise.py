@@ -14,18 +14,15 @@ over, and the median seconds per room.
         [--room-type all] [--workers 2]
 """
 import argparse
-from pathlib import Path
 import statistics
 import sys
 import time
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-sys.path.insert(0, str(ROOT / 'tests'))
+from benchlib import tests_module
 
-from scene_synth_ros.categories import ROOM_TYPES  # noqa: E402
-from scene_synth_ros.corpus import HELDOUT_SEED  # noqa: E402
-from scene_synth_ros.parallel import process_pool  # noqa: E402
+from scene_synth_ros.categories import ROOM_TYPES
+from scene_synth_ros.corpus import HELDOUT_SEED
+from scene_synth_ros.parallel import process_pool
 
 _SYNTHS = {}
 
@@ -36,12 +33,11 @@ def _init_worker():
 
 
 def _run(job):
-    from raster_robot import check
-
     from scene_synth_ros.corpus.generate import empty_room
     from scene_synth_ros.robot import OPERATED_FRONT, Robot
     from scene_synth_ros.scene import Scene
     from scene_synth_ros.synth import SynthConfig, SynthesisError, Synthesizer
+    check = tests_module('raster_robot').check
     rt, radius, i = job
     if radius not in _SYNTHS:
         _SYNTHS[radius] = Synthesizer(config=SynthConfig(robot=Robot(radius=radius)))

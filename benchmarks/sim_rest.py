@@ -17,14 +17,11 @@ import sys
 import tempfile
 import time
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-
-from scene_synth_ros.categories import ROOM_TYPES  # noqa: E402
-from scene_synth_ros.corpus import HELDOUT_SEED  # noqa: E402
-from scene_synth_ros.corpus.generate import empty_room  # noqa: E402
-from scene_synth_ros.export import FORMATS, write  # noqa: E402
-from scene_synth_ros.export.rest import RestLimits, mujoco_rest, pybullet_rest  # noqa: E402
+from scene_synth_ros.categories import ROOM_TYPES
+from scene_synth_ros.corpus import HELDOUT_SEED
+from scene_synth_ros.corpus.generate import empty_room
+from scene_synth_ros.export import FORMATS, write
+from scene_synth_ros.export.rest import RestLimits, mujoco_rest, pybullet_rest
 
 ENGINES = {'mjcf': ('MuJoCo', mujoco_rest), 'urdf': ('PyBullet', pybullet_rest)}
 
@@ -34,7 +31,7 @@ def folder_bytes(folder: Path) -> int:
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     ap.add_argument('-n', type=int, default=50, help='rooms per room type')
     ap.add_argument('--room-type', default='all')
     ap.add_argument('--seconds', type=float, default=2.0, help='simulated time per room')

@@ -12,10 +12,7 @@ import json
 from pathlib import Path
 import sys
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-
-from scene_synth_ros.networks import NETWORKS as MODULES  # noqa: E402
+from scene_synth_ros.networks import NETWORKS as MODULES
 
 
 def module_seconds(logs: list[Path]) -> dict[str, float]:
@@ -31,7 +28,7 @@ def module_seconds(logs: list[Path]) -> dict[str, float]:
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     ap.add_argument('--run-dir', default='runs/compact')
     args = ap.parse_args()
     if not Path(args.run_dir).is_dir():

@@ -14,7 +14,7 @@ A room draws all its random numbers from its own seed, in the same order as alon
 CVAEs' noise is drawn by the room before it asks (``ConditionalVAE.noise``). So a room in
 lockstep differs from the same room made alone only where a forward pass over a batch sums
 in another order than over one example, about 1e-5 on this CPU
-(``benchmarks/batch_gain.py``); that can tip a draw that fell as close to a boundary, and
+(``docs/design/investigations.md``); that can tip a draw that fell as close to a boundary, and
 the room goes on differently from there. Rooms in lockstep are therefore equal in
 distribution to rooms made alone, and nearly all are the same rooms to the last few digits
 (``tests/test_lockstep.py`` checks both). A group of rooms (the same rooms, the same

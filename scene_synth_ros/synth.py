@@ -105,7 +105,7 @@ def against_walls(room: Room, obj: PlacedObject, reach: float,
     The location module sees the room at about 9 cm a pixel, so furniture meant to stand
     against a wall lands a few centimetres off it, where the training rooms never put
     anything (their wall gaps are 0-2 cm), or a few centimetres through it, where it is
-    refused and the category is lost (``benchmarks/shortfall.py``: most failed insertions are
+    refused and the category is lost (``docs/design/investigations.md``: most failed insertions are
     large pieces a median 4-10 cm past a wall). This closes that gap either way and nothing
     else."""
     pos = np.array(obj.position[:2], dtype=float)
@@ -184,14 +184,14 @@ class SynthConfig:
     # ``location_samples`` there all failed (a departure from the paper, as the zones are):
     # its heat map puts a seat mid-front of a desk, where the corpus has it, and at a desk
     # whose only free front is near an end, twelve draws never got there
-    # (``benchmarks/seats.py``).
+    # (``docs/design/investigations.md``).
     zone_samples: int = 8
     models_per_location: int = 3        # catalog models tried at one location
     category_attempts: int = 4          # category draws per insertion before giving up
     # Log-footprint slack within which co-occurrence decides, for dimensions modules that
     # answer their mean; one that draws from its learned spread (``dimensions_noise``) has
     # the nearest model: its draw is the size, and co-occurrence would hand near ties to the
-    # corpus's more frequent narrow models (``benchmarks/model_sizes.py``).
+    # corpus's more frequent narrow models (``docs/design/investigations.md``).
     fit_slack: float = 0.15
     snap_threshold: float = 0.5         # snap when the classifier's probability is above this
     wall_reach: float = 0.25            # push first-tier objects this close to a wall onto it
@@ -274,14 +274,40 @@ class _Context:
             self.timings[module] += time.perf_counter() - t
 
 
+class SynthesisObserver:
+    """What a ``Synthesizer`` tells its ``observer`` while it furnishes rooms: subclass it and
+    override the events wanted (each does nothing here). Observing changes no room; with
+    rooms in lockstep the events of the group's rooms interleave."""
+
+    def category_drawn(self, category: str | None) -> None:
+        """The category module drew ``category`` (None: STOP), also when it draws again
+        after a category that found no place, and for a draw owed to a partner."""
+
+    def placement_checked(self, obj: PlacedObject, refused_by: str | None) -> None:
+        """``fits`` judged a candidate placement: ``refused_by`` is None where it stands,
+        else the first check that refused it: ``floor``, ``support`` or ``sibling`` (second
+        tier), ``collision``, ``door``, the name of a design rule kept at insertion, or
+        ``robot`` (the robot promise)."""
+
+    def object_added(self, obj: PlacedObject) -> None:
+        """``complete`` (or ``generate``) added ``obj`` to the room; the pieces the finished
+        room withdraws again (coffee tables left without seating) are told here too."""
+
+
 class Synthesizer:
-    """Furnishes rooms with the shipped (or given) weights. Bundles load on first use."""
+    """Furnishes rooms with the shipped (or given) weights. Bundles load on first use.
+
+    ``observer``, a ``SynthesisObserver`` (also settable as the attribute of that name), is
+    told of every category drawn, placement checked and object added; None, the default,
+    costs nothing."""
 
     def __init__(self, weights_dir: str | Path | None = None,
-                 config: SynthConfig | None = None):
+                 config: SynthConfig | None = None,
+                 observer: SynthesisObserver | None = None):
         from .paths import weights_dir as default_weights
         self.weights_dir = Path(weights_dir) if weights_dir else default_weights()
         self.config = config or SynthConfig()
+        self.observer = observer
         unknown = set(self.config.insertion_rules) - set(INSERTION_RULES)
         if unknown:
             raise SynthesisError(f'insertion cannot keep the design rule {quoted(min(unknown))}; '
@@ -299,7 +325,7 @@ class Synthesizer:
         self._calls: dict[str, dict | OnnxCalls] = {}   # what ``ask`` gets, per room type
         # On the CPU the images are drawn, and the networks' weights laid out, channels-last:
         # oneDNN convolves 46-channel images so laid out 1.3-2.2x faster
-        # (``benchmarks/batch_gain.py --channels-last``), and drawn that way they need no
+        # (``docs/design/investigations.md``), and drawn that way they need no
         # copy to get there.
         self._channels_last = self.device.type == 'cpu'
         self._renderers: dict[int, TopDownRenderer] = {}
@@ -464,6 +490,8 @@ class Synthesizer:
                     break
                 out.objects.append(obj)
                 added.append(obj)
+                if self.observer is not None:
+                    self.observer.object_added(obj)
         self._withdraw(out, added)
         kept = robot.report(out, self.config.robot, self._robot_state(ctx, out))
         out.meta.update({'generator': 'scene_synth_ros', 'seed': int(seed),
@@ -544,6 +572,9 @@ class Synthesizer:
             if not bool(allowed.any()):
                 break
             c = self._next_category(ctx, category_logits, allowed)
+            if self.observer is not None:
+                self.observer.category_drawn(ctx.spec.names[c] if c < len(ctx.spec.names)
+                                             else None)
             if c == len(ctx.spec.names):         # the index after the categories: STOP
                 return None, 'stop'
             if location is None:
@@ -808,16 +839,24 @@ class Synthesizer:
     def fits(self, ctx: _Context, scene: Scene, obj: PlacedObject,
              parent: PlacedObject | None = None) -> bool:
         """The insertion's rejection rules (see the module docstring)."""
+        refused_by = self._refusal(ctx, scene, obj, parent)
+        if self.observer is not None:
+            self.observer.placement_checked(obj, refused_by)
+        return refused_by is None
+
+    def _refusal(self, ctx: _Context, scene: Scene, obj: PlacedObject,
+                 parent: PlacedObject | None) -> str | None:
+        """The first of ``fits``'s checks that refuses ``obj``, or None."""
         if not ctx.floor.covers(obj.footprint()):
-            return False
+            return 'floor'
         if obj.support is not None:
             if parent is None or support_fraction(obj, parent) < MIN_SUPPORT:
-                return False
-            return not overlaps_any(obj, scene.children_of(parent.id))
+                return 'support'
+            return 'sibling' if overlaps_any(obj, scene.children_of(parent.id)) else None
         if overlaps_any(obj, scene.first_tier):
-            return False
+            return 'collision'
         if any(enters_zone(obj, z) for z in ctx.zones):
-            return False
+            return 'door'
         after = Scene(scene.room, scene.objects + [obj])
         # The design rules kept at insertion, then the robot promise: what held before this
         # object must hold after it, and the object must keep them itself.
@@ -832,15 +871,15 @@ class Synthesizer:
             before = ctx.rules[key]
             now = verdicts(after, new=obj) if name in INCREMENTAL_RULES else verdicts(after)
             if not all(ok or before.get(case) is False for case, ok in now.items()):
-                return False
+                return name
         if ctx.room.doors:
             before = self._robot_state(ctx, scene)
             now = robot.state_after(before, after, self.config.robot)
             if not robot.kept(before, now, len(after.first_tier) - 1):
-                return False
+                return 'robot'
             # The next step starts from it if ``obj`` goes in.
             ctx.robot[_first_tier_key(after)] = now
-        return True
+        return None
 
     def _robot_state(self, ctx: _Context, scene: Scene) -> RobotState:
         key = _first_tier_key(scene)

@@ -16,7 +16,12 @@ from scene_synth_ros.paths import default_config_path, weights_dir
 from scene_synth_ros.render import Frame, RoomDoesNotFit
 from scene_synth_ros.rules import groups
 from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
-from scene_synth_ros.synth import SynthConfig, SynthesisError, Synthesizer
+from scene_synth_ros.synth import (
+    SynthConfig,
+    SynthesisError,
+    SynthesisObserver,
+    Synthesizer,
+)
 
 
 @pytest.fixture(scope='module')
@@ -632,3 +637,69 @@ def test_withdraw_takes_out_added_coffee_tables_without_seating_with_what_stands
     scene = Scene(ROOM, [mine, vase, seat])
     synth._withdraw(scene, [mine, vase, seat])
     assert [o.id for o in scene.objects] == ['added', 'vase', 'seat']
+
+
+# ---- the observer ------------------------------------------------------------------------------
+class Recorder(SynthesisObserver):
+    def __init__(self):
+        self.events = []
+
+    def category_drawn(self, category):
+        self.events.append(('drawn', category))
+
+    def placement_checked(self, obj, refused_by):
+        self.events.append(('checked', obj.id, refused_by))
+
+    def object_added(self, obj):
+        self.events.append(('added', obj.id))
+
+    def of(self, kind):
+        return [e[1:] for e in self.events if e[0] == kind]
+
+
+def test_an_observer_is_told_each_draw_check_and_addition_and_changes_no_room(tiny_weights):
+    recorder = Recorder()
+    watched = Synthesizer(tiny_weights, observer=recorder)
+    room = empty_room('bathroom', 3)
+    refusals = set()
+    for seed in range(2):
+        watched.observer = None
+        a = watched.generate(room, seed=seed)
+        watched.observer = recorder
+        recorder.events.clear()
+        b = watched.generate(room, seed=seed)
+        assert [o.to_dict() for o in a.scene.objects] == [o.to_dict() for o in b.scene.objects]
+        told = [oid for oid, in recorder.of('added')]
+        # Told of every addition, the ones the finished room withdrew again too.
+        kept = {o.id for o in b.scene.objects}
+        assert [o.id for o in b.added] == [oid for oid in told if oid in kept]
+        # Each object added is the last placement checked before it, and stood.
+        for k, event in enumerate(recorder.events):
+            if event[0] == 'added':
+                checks = [e for e in recorder.events[:k] if e[0] == 'checked']
+                assert checks[-1][1:] == (event[1], None)
+        drawn = [c for c, in recorder.of('drawn')]
+        remaining = iter(drawn)
+        assert all(o.category in remaining for o in b.added)     # in the order drawn
+        assert (drawn[-1] is None) == (b.stopped == 'stop')
+        refusals |= {why for _, why in recorder.of('checked') if why is not None}
+    assert refusals and refusals <= {'floor', 'support', 'sibling', 'collision', 'door',
+                                     'robot', *SynthConfig().insertion_rules}
+    # The checks' names, on placements each refused by one of them.
+    recorder.events.clear()
+    ctx = watched._context(ROOM, 0)
+    desk = box('desk', 3.0, 2.0, 1.2, 0.6, 0.75, oid='desk_0')
+    lamp = box('table lamp', 2.8, 2.0, 0.3, 0.3, 0.03, z=0.75, support='desk_0', oid='lamp')
+    scene = Scene(ROOM, [desk, lamp])
+    zone = door_zone(ROOM, ROOM.doors[0]).centroid
+    for obj, parent in ((box('wardrobe', 0.4, 1.5, 1.0, 1.0, oid='off'), None),
+                        (box('wardrobe', 2.3, 2.0, 1.0, 1.0, yaw=math.pi, oid='into'), None),
+                        (box('stand', zone.x, zone.y, 0.4, 0.4, oid='door'), None),
+                        (box('plant', 3.0, 2.6, 0.3, 0.3, z=0.75, support='desk_0',
+                             oid='edge'), desk),
+                        (box('plant', 2.9, 2.0, 0.3, 0.3, z=0.75, support='desk_0',
+                             oid='on_lamp'), desk)):
+        assert not watched.fits(ctx, scene, obj, parent)
+    assert recorder.of('checked') == [('off', 'floor'), ('into', 'collision'),
+                                      ('door', 'door'), ('edge', 'support'),
+                                      ('on_lamp', 'sibling')]

@@ -138,7 +138,7 @@ def empty_room(room_type: str, seed: int = 0, index: int = 0) -> Room:
     """The empty shell of corpus room (``seed``, ``index``): rooms shaped and sized like the
     training rooms, for synthesis from scratch. The evaluation furnishes these, so that its
     synthesized room ``i`` shares its walls, doors and windows with corpus room ``i``; that
-    takes furnishing the corpus room (6-14 ms, ``benchmarks/corpus_hash.py``), to learn
+    takes furnishing the corpus room (6-14 ms, ``docs/design/investigations.md``), to learn
     which attempt's shell it kept."""
     return generate_room(room_type, seed, index).room
 
@@ -147,7 +147,7 @@ def first_shell(room_type: str, seed: int = 0, index: int = 0) -> Room:
     """The shell of the first attempt at corpus room (``seed``, ``index``), drawn without
     furnishing it (under a millisecond): the corpus room's own shell (``empty_room``) but
     where that attempt was sent back and the corpus kept a later one (8 % of bedrooms, 1.5-6 %
-    of the other types: ``benchmarks/corpus_hash.py --first-shells 400``), a shell drawn
+    of the other types: ``docs/design/investigations.md``), a shell drawn
     exactly as the corpus draws its rooms' shells. The shells of batches (``generate -n``),
     which need no corpus room beside them."""
     room_type = corpus_room_type(room_type)

@@ -133,7 +133,7 @@ def fold_batch_norm(conv: nn.Conv2d, bn: nn.BatchNorm2d) -> nn.Conv2d:
 def fold_batch_norms(net: nn.Module) -> nn.Module:
     """``net``, in evaluation mode, with every batch norm folded into the convolution before
     it (``fold_batch_norm``), in place: a layer fewer per convolution, 1.15-1.24x faster a pass
-    alone and up to 1.11x in a batch of 10 (``benchmarks/batch_gain.py --fold``). Outputs
+    alone and up to 1.11x in a batch of 10 (``docs/design/investigations.md``). Outputs
     agree with the unfolded network's to float32 rounding (within 1e-6 of the largest), not
     bit for bit; inference only, as a folded network cannot be trained or saved as a
     bundle."""

@@ -44,7 +44,7 @@ class ModelConfig:
     location_skips: bool = True
     # A per-pixel offset to the centroid, regressed beside the heat map (as CenterNet does),
     # so that a drawn location is put where the object's centre is, not anywhere in its pixel
-    # or the target's block (``benchmarks/location_precision.py``). Off in the shipped
+    # or the target's block (``docs/design/investigations.md``). Off in the shipped
     # configuration: in 1,200 compact steps the offsets stayed near their zero baseline (0.60
     # pixels of error against 0.75) and cost the heat maps (held-out cross-entropy 0.328
     # against 0.280 in bedrooms), where ``SynthConfig.location_mode`` gets the precision.
@@ -59,7 +59,7 @@ class ModelConfig:
     # exp(sigma * noise). On in every configuration of config/ and in the shipped weights;
     # off (bundles made before it), the likelihood's sigma is fixed at 0.1 and synthesis takes
     # the mean, whose draws spread over a third of the corpus's sizes
-    # (``benchmarks/model_sizes.py``).
+    # (``docs/design/investigations.md``).
     dimensions_noise: bool = False
     discriminator_widths: tuple[int, ...] = (16, 32, 64, 64)
 

@@ -136,7 +136,7 @@ class ExampleSource:
         # Uniform over (room, prefix) pairs, the states synthesis visits: drawing the room
         # uniformly and then the prefix would weigh a prefix of an N-object room 1 / (N + 1),
         # overweighting complete small rooms and so teaching STOP too early
-        # (benchmarks/shortfall.py).
+        # (docs/design/investigations.md).
         scene = self._scene(rng, per_state=True)
         order = insertion_order(scene, rng, by_importance=True)
         k = int(rng.integers(len(order) + 1))

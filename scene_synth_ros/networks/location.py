@@ -190,7 +190,7 @@ def blob_centre(p: np.ndarray, points: np.ndarray, blocks: np.ndarray | None = N
 
     A location module trained on a 3 x 3 target answers an object's centroid with a blob
     about that wide, every pixel of it likely; a draw from the blob is up to a pixel off the
-    centroid (``benchmarks/location_precision.py``), the blob's centre is not."""
+    centroid (``docs/design/investigations.md``), the blob's centre is not."""
     if blocks is None:
         blocks = LocationDraws(p).blocks
     n, di, dj = p.shape[0], _DI, _DJ

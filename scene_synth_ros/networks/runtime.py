@@ -6,7 +6,7 @@ time is a batch of one through networks of 16-128 channels, which torch runs at 
 its per-layer overhead, not of the arithmetic. ``OnnxCalls`` exports each call once, from
 ``forward`` and the bundle's folded networks, to an ONNX graph and runs it in an onnxruntime
 session: at a batch of one a bedroom's calls take 2.3-2.9x less time there (the location
-call 1.21 against 3.32 ms), and a whole bedroom 37 % less (``benchmarks/runtime_gain.py``).
+call 1.21 against 3.32 ms), and a whole bedroom 37 % less (``docs/design/investigations.md``).
 
 The graphs take the images as synthesis draws them on the CPU, channels-last, with zero
 channels after the drawn ones up to a multiple of ``CHANNEL_BLOCK`` (``padded_channels``),
@@ -22,10 +22,10 @@ in distribution to the other's, nearly all the very same rooms (``tests/test_run
 checks both), and the same seed gives the same room in either.
 
 onnxruntime's lead is overhead saved, so it shrinks as the batch grows, and beyond
-``ONNX_MAX_BATCH`` examples a call is run by torch (``benchmarks/runtime_gain.py --sizes
-1,2,3,4,8,16,24,32,48,64 --onnx-max-batch 64`` on this CPU: onnxruntime 1.07-1.16x ahead at
-24; at 32 the location call 0.71x, from 48 every call but the category call behind). So
-batches of rooms in lockstep (8 by default, ``batch``) run onnxruntime too.
+``ONNX_MAX_BATCH`` examples a call is run by torch (``docs/design/investigations.md``, on
+this CPU: onnxruntime 1.07-1.16x ahead at 24; at 32 the location call 0.71x, from 48 every
+call but the category call behind). So batches of rooms in lockstep (8 by default,
+``batch``) run onnxruntime too.
 
 ``config.resolve_runtime`` chooses: ``auto`` is onnxruntime on the CPU where it is installed
 (it is in ``requirements.txt``), torch elsewhere (CUDA, or no onnxruntime).
