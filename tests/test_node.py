@@ -4,6 +4,7 @@ Every node gets a ROS domain of its own, so tests (and test runs) do not hear ea
 """
 from __future__ import annotations
 
+import ast
 from dataclasses import fields
 import itertools
 import json
@@ -425,12 +426,12 @@ def test_a_layout_typed_as_yaml_or_pasted_as_a_python_dict(node):
     assert 'single quotes' in diag['last error']
 
 
-def _readme_ros2_commands() -> list[list[str]]:
-    """The argv of every ros2 command in the README's "From the ros2 command line" block, as
-    bash expands it (from the repository root, where its paths point)."""
+def _documented_ros2_commands(doc: str, heading: str) -> list[list[str]]:
+    """The argv of every ros2 command in the first bash block under ``heading`` of the
+    document ``doc``, as bash expands it (from the repository root, where its paths point)."""
     root = Path(__file__).resolve().parent.parent
-    text = (root / 'README.md').read_text()
-    block = text.split('### From the ros2 command line', 1)[1].split('```bash', 1)[1]
+    text = (root / doc).read_text()
+    block = text.split(heading + '\n', 1)[1].split('```bash', 1)[1]
     lines = [line for line in block.split('```', 1)[0].splitlines()
              if line.startswith('ros2 ')]
     out = []
@@ -479,10 +480,34 @@ def _as_ros2_would(client, argv: list[str]) -> str:
     return f'{client.get_parameters([argv[3]])[argv[3]]}'
 
 
-def test_the_readme_ros2_commands_work(node):
+def _declared_launch_arguments() -> set[str]:
+    root = Path(__file__).resolve().parent.parent
+    tree = ast.parse((root / 'launch' / 'scene_synth.launch.py').read_text())
+    return {n.args[0].value for n in ast.walk(tree) if isinstance(n, ast.Call)
+            and getattr(n.func, 'id', None) == 'DeclareLaunchArgument'}
+
+
+def test_the_readme_quick_start_works(node):
+    """README.md's "ROS 2 in one minute": the launch names the shipped launch file and its
+    arguments; the publish, echo and service call do what the README says."""
+    client = node.client
+    launch, *commands = _documented_ros2_commands('README.md', '## ROS 2 in one minute')
+    assert launch[:3] == ['launch', 'scene_synth_ros', 'scene_synth.launch.py']
+    assert {a.split(':=', 1)[0] for a in launch[3:]} <= _declared_launch_arguments()
+    assert [argv[:2] for argv in commands] == [['topic', 'pub'], ['topic', 'echo'],
+                                               ['service', 'call']]
+    answers = [_as_ros2_would(client, argv) for argv in commands]
+    scene = parse_scene(answers[1])                      # the furnished room as raw JSON
+    assert scene.room.room_type == 'bedroom' and scene.objects
+    assert answers[2].startswith('success=True')
+    assert json.loads(answers[2].split('message=', 1)[1][1:-1])['category']
+
+
+def test_the_node_guide_ros2_commands_work(node):
+    """Every command of docs/node.md's "From the ros2 command line" block."""
     client = node.client
     answers = []
-    for argv in _readme_ros2_commands():
+    for argv in _documented_ros2_commands('docs/node.md', '## From the ros2 command line'):
         assert any(a.startswith(client.target + '/') or a == client.target for a in argv)
         answers.append(_as_ros2_would(client, argv))
         print('$ ros2', ' '.join(argv)[:150], '\n', answers[-1][:300])

@@ -16,10 +16,14 @@ from . import catalog, corpus, datasets, evaluation, export, ros, synthesis, tra
 from .common import EXIT_BAD_INPUT, define_weights
 
 GROUPS = (synthesis, export, training, evaluation, corpus, datasets, catalog, ros)
+DESCRIPTION = ('Furnish empty rooms for robot simulation: furnish one room or thousands, '
+               'complete partial rooms, export them for simulators, train and evaluate the '
+               'networks, and talk to a running scene_synth_node.')
+EPILOG = "Each verb has its own --help. The guide: docs/cli.md in the package's repository."
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog='scene-synth', description=__doc__.splitlines()[0])
+    p = argparse.ArgumentParser(prog='scene-synth', description=DESCRIPTION, epilog=EPILOG)
     sub = p.add_subparsers(dest='command', required=True)
     for group in GROUPS:
         group.add_parser(sub)

@@ -15,27 +15,31 @@ def add_parser(sub) -> None:
     c.add_argument('--room-type', default='bedroom', help=f'{"|".join(ROOM_TYPES)}|all')
     c.add_argument('-n', type=int, default=100, help='rooms per room type')
     c.add_argument('--out', required=True, help='output directory')
-    c.add_argument('--seed', type=int, default=0)
+    c.add_argument('--seed', type=int, default=0, help='corpus seed: the same seed gives the '
+                   'same rooms')
     c.add_argument('--workers', type=int, default=None, help='processes (default: all cores)')
-    c.add_argument('--quiet', action='store_true')
+    c.add_argument('--quiet', action='store_true', help='no progress bar')
     c.set_defaults(func=cmd_corpus)
 
     c = sub.add_parser('corpus-stats', help="compare the corpus with the paper's table")
-    c.add_argument('--room-type', default='all')
+    c.add_argument('--room-type', default='all', help=f'{"|".join(ROOM_TYPES)}|all')
     c.add_argument('-n', type=int, default=2000, help='rooms per type to generate')
-    c.add_argument('--seed', type=int, default=0)
+    c.add_argument('--seed', type=int, default=0, help='corpus seed')
     c.add_argument('--dir', help='read scenes from this directory instead of generating')
-    c.add_argument('--workers', type=int, default=None)
+    c.add_argument('--workers', type=int, default=None, help='processes (default: all cores)')
     c.add_argument('--categories', action='store_true', help='print per-category rates')
     c.add_argument('--json', help='also write the summary rows to this JSON file')
     c.set_defaults(func=cmd_corpus_stats)
 
-    c = sub.add_parser('corpus-calibrate', help="fit the corpus' request-rate factors")
-    c.add_argument('--room-type', default='all')
-    c.add_argument('--rooms', type=int, default=2000)
-    c.add_argument('--iterations', type=int, default=3)
-    c.add_argument('--seed', type=int, default=12345)
-    c.add_argument('--workers', type=int, default=None)
+    c = sub.add_parser('corpus-calibrate', help="fit how often the corpus asks for each "
+                       "category, so that its rooms match the paper's table (written to "
+                       "corpus/calibration.json)")
+    c.add_argument('--room-type', default='all', help=f'{"|".join(ROOM_TYPES)}|all')
+    c.add_argument('--rooms', type=int, default=2000, help='rooms per type and iteration')
+    c.add_argument('--iterations', type=int, default=3, help='rounds of fitting')
+    c.add_argument('--seed', type=int, default=12345, help='first corpus seed of the rooms fitted '
+                   'on (the training corpus is seed 0)')
+    c.add_argument('--workers', type=int, default=None, help='processes (default: all cores)')
     c.set_defaults(func=cmd_corpus_calibrate)
 
 

@@ -36,23 +36,26 @@ def add_parser(sub) -> None:
     c.set_defaults(func=cmd_export)
 
     c = sub.add_parser('render', help='draw a scene JSON as a top-down picture')
-    c.add_argument('scene')
+    c.add_argument('scene', help='a scene or room layout JSON')
     c.add_argument('--png', help='picture for people (matplotlib)')
     c.add_argument('--channels', help="the network input image as a .npy (C x N x N)")
-    c.add_argument('--resolution', type=int, default=64)
-    c.add_argument('--title')
+    c.add_argument('--resolution', type=int, default=64, help='pixels a side of the '
+                   '--channels image (default 64)')
+    c.add_argument('--title', help='title of the --png picture')
     data_set_option(c)
     c.set_defaults(func=cmd_render)
 
     c = sub.add_parser('validate', help='check scene JSON files: schema and physics')
-    c.add_argument('files', nargs='+')
+    c.add_argument('files', nargs='+', help='scene or room layout JSON files')
     data_set_option(c)
     c.set_defaults(func=cmd_validate)
 
-    c = sub.add_parser('reach', help='the robot promise measured on scene files: doors '
-                       'connected, every object reachable, the share of free floor reachable '
-                       '(exit 1 when a file breaks it)')
-    c.add_argument('files', nargs='+')
+    c = sub.add_parser('reach', help='check that a robot can drive between the doors and '
+                       'reach every object of scene files (exit 1 when it cannot)',
+                       description='For each scene file, say whether a round robot can drive '
+                       'from each door to every other and reach every object, and how much '
+                       'of the free floor it drives over. Exit code 1 when a file breaks it.')
+    c.add_argument('files', nargs='+', help='scene JSON files')
     robot_options(c)
     c.add_argument('--png', help='a picture of the reachable floor (one file only)')
     data_set_option(c)

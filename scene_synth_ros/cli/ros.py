@@ -15,8 +15,8 @@ DEMO_NODE_START_TIMEOUT = 90.0
 
 
 def add_parser(sub) -> None:
-    ros = sub.add_parser('ros', help='talk to a running scene_synth_node (rclpy clients), or '
-                         'run the node demo')
+    ros = sub.add_parser('ros', help='talk to a running scene_synth_node without the ros2 '
+                         'tools, or run the node demo')
     ros.add_argument('--node', default='/scene_synth_node', help='the node to talk to')
     ros.add_argument('--domain-id', type=int,
                      help='ROS domain (default: $ROS_DOMAIN_ID, else 0)')

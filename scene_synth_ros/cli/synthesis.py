@@ -23,7 +23,10 @@ from .common import (
 
 
 def add_parser(sub) -> None:
-    c = sub.add_parser('generate', help='furnish an empty room with the trained pipeline')
+    c = sub.add_parser('generate', help='furnish an empty room, or a batch of rooms',
+                       description='Furnish an empty room: a layout file, or a corpus-like '
+                       'empty room drawn from the seed. The same seed gives the same room. '
+                       'With -n or --layouts, furnish a batch of rooms into a directory.')
     c.add_argument('--room-type', default='bedroom', help=f'{"|".join(ROOM_TYPES)}')
     c.add_argument('--layout', help='a room layout JSON (default: a corpus-like empty room '
                    'drawn from the seed)')
@@ -31,14 +34,18 @@ def add_parser(sub) -> None:
     _batch_options(c, layouts=True)
     c.set_defaults(func=cmd_generate)
 
-    c = sub.add_parser('complete', help='add the missing objects to a partial room')
+    c = sub.add_parser('complete', help='add the missing objects to a partial room',
+                       description='Keep the objects of a partial room and furnish the rest. '
+                       'A directory or JSON-lines file of partial rooms is a batch.')
     c.add_argument('scene', help='a room layout or scene JSON with the objects to keep (a '
                    'directory of them, or a JSON-lines file: a batch)')
     _synthesis_options(c, batch=True)
     _batch_options(c, layouts=False)
     c.set_defaults(func=cmd_complete)
 
-    c = sub.add_parser('suggest', help='propose k distinct next objects for a room')
+    c = sub.add_parser('suggest', help='propose k distinct next objects for a room',
+                       description='Propose k distinct objects that could go into the room '
+                       'next, without changing it.')
     c.add_argument('scene', help='a room layout or scene JSON')
     c.add_argument('-k', type=int, default=5, help='number of proposals')
     _synthesis_options(c, out=False)
@@ -52,18 +59,24 @@ def add_parser(sub) -> None:
                    default='corpus')
     c.add_argument('--data', help='data: the imported data set the --weights-dir were '
                    'trained on (scene-synth train --data)')
-    c.add_argument('--out', default='docs/gallery/corpus.png')
+    c.add_argument('--out', default='docs/gallery/corpus.png', help='the picture to write '
+                   '(default: docs/gallery/corpus.png)')
     c.add_argument('--per-type', type=int, default=3, help='columns of the grid')
-    c.add_argument('--seed', type=int, default=0)
+    c.add_argument('--seed', type=int, default=0, help='corpus: the corpus seed; otherwise '
+                   'the seed of the first room')
     c.add_argument('--partial', help='completions: the partial room (default: '
                    'examples/partial_bedroom.json)')
     c.add_argument('--weights-dir', help=WEIGHTS_DIR_HELP)
     c.set_defaults(func=cmd_gallery)
 
-    c = sub.add_parser('demo', help='furnish example rooms with the pipeline and show them')
-    c.add_argument('--out', default='demo_out')
+    c = sub.add_parser('demo', help='furnish the example rooms and show them, without ROS',
+                       description='Furnish the example layouts, complete the example '
+                       'partial room and furnish empty rooms of every type, then show them: '
+                       'a table in the terminal, and a JSON file and a picture of each room.')
+    c.add_argument('--out', default='demo_out', help='folder for the scenes and pictures '
+                   '(default: demo_out)')
     c.add_argument('--per-type', type=int, default=1, help='empty rooms per room type')
-    c.add_argument('--seed', type=int, default=0)
+    c.add_argument('--seed', type=int, default=0, help='seed of the first room')
     c.add_argument('--weights-dir', help=WEIGHTS_DIR_HELP)
     c.set_defaults(func=cmd_demo)
 
@@ -93,8 +106,8 @@ def _synthesis_options(c, out: bool = True, batch: bool = False) -> None:
 
 
 def _batch_options(c, layouts: bool) -> None:
-    g = c.add_argument_group('batches', 'many rooms into one directory (--out DIR), resumable; '
-                             'see the README, "Thousands of rooms"')
+    g = c.add_argument_group('batches', 'many rooms into one directory (--out DIR); the same '
+                             'command run again resumes it (docs/cli.md)')
     g.add_argument('-n', type=int, help='rooms in the batch: room i is furnished with seed '
                    '--seed + i' + (', in the corpus-like shell i of the seed (or in --layout, '
                                    'or layout i of --layouts)' if layouts else

@@ -35,7 +35,7 @@ def add_parser(sub) -> None:
 
     c = sub.add_parser('components', help="the paper's component table of trained weights, "
                        'beside randomly initialised networks (held-out corpus rooms)')
-    c.add_argument('--room-type', default='all')
+    c.add_argument('--room-type', default='all', help='a room type of the weights, or all')
     c.add_argument('--weights-dir', help=WEIGHTS_DIR_HELP)
     c.add_argument('--markdown', action='store_true', help='a Markdown table')
     c.set_defaults(func=cmd_components)

@@ -75,8 +75,8 @@ def markdown(results: dict, figure_dir: str = '') -> str:
           f'*Synthesized* rooms are the empty shells of held-out corpus rooms (corpus seed '
           f'{HELDOUT_SEED}, never seen in training) furnished from scratch by the pipeline; '
           f'the *training corpus* is corpus seed {CORPUS_SEED} (the shipped weights were '
-          f'trained on its first 3,000 to 5,000 rooms, module by module: see the README\'s '
-          f'*Training and the shipped weights*); '
+          f'trained on its first 3,000 to 5,000 rooms, module by module: see docs/training.md, '
+          f'*How the shipped weights were made*); '
           f'*held-out corpus* rooms are the same seed-'
           f'{HELDOUT_SEED} shells as the corpus rules furnished them. Every figure is a '
           f'function of the seed.', '']

@@ -70,7 +70,8 @@ def read_manifest(path: Path, folder: Path) -> tuple[list[ModelSpec], list[str]]
         data = {'models': data}
     if not isinstance(data, dict) or not isinstance(data.get('models'), list):
         raise CatalogError(f'the manifest {quoted(str(path), 80)} needs a "models" list of '
-                           f'entries with file and category (README, "Your own furniture")')
+                           f'entries with file and category (docs/catalog.md, "Your own '
+                           'furniture")')
     defaults = data.get('defaults') or {}
     if not isinstance(defaults, dict):
         raise CatalogError(f'the manifest\'s defaults must be a mapping (of up, front, units '
