@@ -23,8 +23,8 @@ import sys
 from scene_synth_ros.categories import ROOM_TYPES
 from scene_synth_ros.corpus import HELDOUT_SEED
 from scene_synth_ros.corpus.generate import empty_room, generate_room
-from scene_synth_ros.evaluation.design_rules import compare
 from scene_synth_ros.parallel import process_pool
+from scene_synth_ros.rules import compare
 from scene_synth_ros.synth import SynthesisObserver
 
 TIGHT = ('wall_contact', 'floating', 'window', 'reachable')   # 3-point targets, by name part
@@ -46,7 +46,7 @@ def _init_worker(weights, location_mode, networks_alone, robot_reach, overrides=
     global _synth
     import torch
     torch.set_num_threads(1)
-    from scene_synth_ros.robot import Robot
+    from scene_synth_ros.rules.robot import Robot
     from scene_synth_ros.synth import SynthConfig, Synthesizer
     cfg = SynthConfig(location_mode=location_mode)
     for name, value in (overrides or {}).items():

@@ -34,7 +34,7 @@ def _init_worker():
 
 def _run(job):
     from scene_synth_ros.corpus.generate import empty_room
-    from scene_synth_ros.robot import OPERATED_FRONT, Robot
+    from scene_synth_ros.rules.robot import OPERATED_FRONT, Robot
     from scene_synth_ros.scene import Scene
     from scene_synth_ros.synth import SynthConfig, SynthesisError, Synthesizer
     check = tests_module('raster_robot').check
@@ -68,7 +68,7 @@ def main() -> int:
     t0 = time.perf_counter()
     with process_pool(args.workers, _init_worker, ()) as pool:
         rows = list(pool.map(_run, jobs, chunksize=4))
-    from scene_synth_ros.robot import Robot
+    from scene_synth_ros.rules.robot import Robot
     print(f'robot promise: {args.n} held-out shells per room type and radius, reach '
           f'{Robot().reach:g} m, '
           f'checked on a {2} cm raster ({time.perf_counter() - t0:.0f} s, '

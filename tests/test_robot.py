@@ -119,7 +119,7 @@ def synth(tiny_weights):
 
 def test_the_default_robot_is_the_design_rules_robot():
     # Rooms furnished for the default robot then keep the reachability rules by construction.
-    from scene_synth_ros.evaluation.design_rules.access import RULE_ROBOT
+    from scene_synth_ros.rules.access import RULE_ROBOT
     assert Robot() == RULE_ROBOT == SynthConfig().robot
 
 
