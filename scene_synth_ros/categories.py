@@ -89,6 +89,10 @@ class CategoryInfo:
     supported_by: tuple[str, ...] = ()           # second tier: first-tier parents
     against_wall: bool = False                   # back normally touches a wall
     description: str = ''
+    roles: frozenset[str] = frozenset()          # what it is for (``ROLES``)
+    # second tier: where a designer expects it, each parent with the weight the corpus
+    # prefers it by (``PLAUSIBLE_PARENTS``); a subset of ``supported_by``
+    parents: tuple[tuple[str, float], ...] = ()
 
     @property
     def mean_footprint(self) -> float:
@@ -105,16 +109,92 @@ class CategoryInfo:
         return True
 
 
+# What a category is for, as the design rules, the corpus and insertion ask it: the one
+# definition of each role, which a category's description carries (``CategoryInfo.roles``).
+# Members are listed in the order the corpus draws among them.
+ROLES: dict[str, tuple[str, ...]] = {
+    'bed': ('double bed', 'single bed', 'bunker bed', 'baby bed', 'daybed'),
+    # one per bedroom (a cot comes beside one)
+    'main bed': ('double bed', 'single bed', 'bunker bed', 'daybed'),
+    # a head end against the wall, with nightstands beside it
+    'headboard bed': ('double bed', 'single bed', 'bunker bed'),
+    'lounge seat': ('sofa', 'sofa chair', 'armchair', 'daybed'),
+    'armchair': ('sofa chair', 'armchair'),
+    # a chair needs a table to sit at
+    'chair': ('office chair', 'straight chair', 'chair'),
+    # what people sit on at a table or a desk
+    'table seat': ('office chair', 'straight chair', 'chair', 'stool'),
+    'bench': ('bench chair',),
+    # seats light enough to be pulled out of the way of what they stand before
+    'loose seat': ('office chair', 'straight chair', 'chair', 'stool', 'ottoman', 'bench chair'),
+    # used seated, from the front
+    'worktop': ('desk', 'dressing table', 'piano'),
+    # a worktop that is not complete without its seat
+    'desk': ('desk', 'dressing table'),
+    'table': ('desk', 'dressing table', 'piano', 'coffee table'),
+    # doors or drawers open at the front
+    'storage': ('wardrobe', 'dresser', 'dressing table', 'shelving', 'shoes cabinet', 'cabinet',
+                'washer'),
+    'fixture': ('toilet', 'bidet', 'sink', 'shower', 'bathtub'),
+    # one must stand before it to use it (open a door or drawer, sit on a WC, work at a desk)
+    'operated front': ('wardrobe', 'dresser', 'dressing table', 'shelving', 'shoes cabinet',
+                       'cabinet', 'washer', 'toilet', 'bidet', 'sink', 'shower', 'bathtub',
+                       'stand', 'tv stand', 'desk', 'piano', 'fireplace', 'whiteboard',
+                       'water machine'),
+}
+
+
+def members(role: str) -> tuple[str, ...]:
+    """The paper's categories that have ``role``, in ``ROLES``'s order."""
+    return ROLES[role]
+
+
+def roles_of(name: str) -> frozenset[str]:
+    """The roles the paper's table gives category ``name`` (none for a name it lacks)."""
+    return frozenset(r for r, names in ROLES.items() if name in names)
+
+
+# Where a designer expects each second-tier object, among the parents that can hold it, and
+# the weight the corpus gives each (a parent's share of its placements is its weight over the
+# sum of those present): no TV on a desk or table lamp on a shoe cabinet (a design review
+# flagged both), a game console by the TV, a laptop where one sits (or charges it at the
+# bedside), tableware where one eats or drinks; nothing on a washing machine that vibrates,
+# and no vase in the way on a washbasin (a small plant there is usual).
+_DECOR = {'stand': 1, 'desk': 1, 'dresser': 1, 'dressing table': 1, 'tv stand': 1,
+          'coffee table': 1, 'shelving': 1, 'shoes cabinet': 1, 'fireplace': 1, 'cabinet': 1}
+PLAUSIBLE_PARENTS: dict[str, dict[str, float]] = {
+    'table lamp': {'stand': 8, 'desk': 2, 'dresser': 1.5, 'dressing table': 1.5, 'tv stand': 1},
+    'television': {'tv stand': 12, 'dresser': 2},
+    'console': {'tv stand': 10},
+    'laptop': {'desk': 10, 'dressing table': 1, 'coffee table': 2, 'stand': 1},
+    'book': {'desk': 3, 'stand': 2, 'shelving': 4, 'coffee table': 1, 'dresser': 1,
+             'double bed': 1, 'single bed': 1},
+    'plant': {**_DECOR, 'shelving': 2, 'desk': 2, 'tv stand': 2, 'coffee table': 2, 'sink': 3},
+    'vase': {**_DECOR, 'coffee table': 3, 'dresser': 2, 'tv stand': 2, 'fireplace': 2},
+    'toy': {'shelving': 3, 'desk': 1, 'stand': 1, 'dresser': 1, 'coffee table': 1, 'bathtub': 4,
+            'cabinet': 1, 'double bed': 1, 'single bed': 2, 'bunker bed': 1, 'daybed': 1},
+    'fishbowl': {'desk': 2, 'dresser': 2, 'shelving': 2, 'tv stand': 1, 'coffee table': 1,
+                 'stand': 1},
+    'cup': {'coffee table': 5, 'desk': 3, 'stand': 1},
+    'glass': {'coffee table': 5, 'desk': 1, 'stand': 1},
+    'bottle': {'coffee table': 5, 'desk': 1, 'stand': 1},
+    'fruit bowl': {'coffee table': 5, 'desk': 1},
+}
+
 _SURFACES_LAMP = ('stand', 'desk', 'dresser', 'dressing table', 'shoes cabinet', 'tv stand')
 _SURFACES_DECOR = ('stand', 'desk', 'dresser', 'dressing table', 'tv stand', 'coffee table',
                    'shelving', 'shoes cabinet', 'fireplace', 'sink', 'washer', 'cabinet')
 _SURFACES_TABLEWARE = ('coffee table', 'desk', 'tv stand', 'dresser', 'stand')
-_BEDS = ('double bed', 'single bed', 'bunker bed', 'daybed')
+_BEDS = ROLES['main bed']
 
 
 def _c(name, tier, width, depth, height, supported_by=(), against_wall=False, description=''):
     return CategoryInfo(name, tier, width, depth, height, tuple(supported_by), against_wall,
-                        description)
+                        description, roles_of(name), _parents_of(name))
+
+
+def _parents_of(name: str) -> tuple[tuple[str, float], ...]:
+    return tuple((p, float(w)) for p, w in PLAUSIBLE_PARENTS.get(name, {}).items())
 
 
 CATEGORIES: dict[str, CategoryInfo] = {c.name: c for c in (
@@ -289,7 +369,9 @@ class RoomTypeSpec:
                                 'height': list(c.info.height),
                                 'supported_by': list(c.info.supported_by),
                                 'against_wall': c.info.against_wall,
-                                'description': c.info.description}
+                                'description': c.info.description,
+                                'roles': sorted(c.info.roles),
+                                'parents': [[p, w] for p, w in c.info.parents]}
                                for c in self.categories]}
 
     @classmethod
@@ -297,11 +379,28 @@ class RoomTypeSpec:
         cats = tuple(RoomCategorySpec(
             CategoryInfo(str(c['name']), str(c['tier']), _pair(c['width']), _pair(c['depth']),
                          _pair(c['height']), tuple(map(str, c['supported_by'])),
-                         bool(c['against_wall']), str(c.get('description', ''))),
+                         bool(c['against_wall']), str(c.get('description', '')),
+                         _roles(c), _weighted_parents(c)),
             int(c['count']), float(c['frequency']), float(c['importance']))
             for c in d['categories'])
         return cls(str(d['room_type']), int(d['rooms']), float(d['size_cap']), cats,
                    float(d['doors_per_room']), float(d['windows_per_room']))
+
+
+def _roles(d: dict[str, Any]) -> frozenset[str]:
+    """A category's roles as a spec's dict gives them; a dict written before categories had
+    roles (a bundle of an older release) has the paper's roles of the category's name."""
+    if 'roles' in d:
+        return frozenset(map(str, d['roles']))
+    return roles_of(str(d['name']))
+
+
+def _weighted_parents(d: dict[str, Any]) -> tuple[tuple[str, float], ...]:
+    """A category's weighted parents as a spec's dict gives them (the paper's for a dict
+    written before categories had them)."""
+    if 'parents' in d:
+        return tuple((str(p), float(w)) for p, w in d['parents'])
+    return _parents_of(str(d['name']))
 
 
 def _pair(v) -> tuple[float, float]:

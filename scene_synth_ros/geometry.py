@@ -13,13 +13,14 @@ import shapely
 from shapely.geometry import Point, Polygon
 
 from .scene import Opening, PlacedObject, Room, Scene, box_corners
-
-COLLISION_TOLERANCE = 0.01      # first-tier footprints may interpenetrate by at most 1 cm
-FLOOR_TOLERANCE = 0.01          # footprints may poke through a wall by at most 1 cm
-MIN_SUPPORT = 0.70              # a second-tier footprint must be >= 70 % on its parent
-ROBOT_WIDTH = 0.40              # the robot that must get from every door to every door
-DOOR_ZONE_MIN_DEPTH = 0.80      # clear zone inside a door: at least this deep...
-DOOR_ZONE_SIDE_MARGIN = 0.10    # ...and this much wider than the door on each side
+from .thresholds import (
+    COLLISION_TOLERANCE,
+    DOOR_ZONE_MIN_DEPTH,
+    DOOR_ZONE_SIDE_MARGIN,
+    FLOOR_TOLERANCE,
+    MIN_SUPPORT,
+    ROBOT_WIDTH,
+)
 
 
 def shrunk_footprint(obj: PlacedObject, by: float) -> Polygon:

@@ -42,7 +42,7 @@ at a pixel owns ``HEIGHT``, ``SIN`` and ``COS`` there: a second-tier object wins
 parent.
 
 Walls: a pixel is wall iff its centre is outside the floor polygon and within the wall reach
-``max(WALL_THICKNESS, m)`` of the floor outline (at least one pixel, so that coarse images
+``max(WALL_BAND, m)`` of the floor outline (at least one pixel, so that coarse images
 still have a closed wall ring).
 
 Doors and windows are drawn as the rectangle of the opening: along its wall, the opening's
@@ -77,7 +77,7 @@ FIRST_CATEGORY = 8
 FIXED_CHANNEL_NAMES = ('room', 'wall', 'object', 'height', 'sin', 'cos', 'door', 'window')
 
 HEIGHT_SCALE = 3.0        # metres: the HEIGHT channel holds top height / HEIGHT_SCALE
-WALL_THICKNESS = 0.15     # metres of wall drawn outside the floor outline (at least 1 pixel)
+WALL_BAND = 0.15          # metres of wall drawn outside the floor outline (at least 1 pixel)
 OPENING_DEPTH = 0.15      # metres a door/window rectangle reaches on each side of its wall
 EPS_PX = 1e-6             # pixels: boundary tolerance of the pixel-centre rule
 FIT_TOLERANCE = 1e-6      # metres a room may exceed its square by (rounding of its vertices)
@@ -395,7 +395,7 @@ def _opening_boxes(room: Room) -> list[tuple[int, float, float, float, float]]:
 
 def wall_reach(frame: Frame) -> float:
     """Metres outside the floor outline that are drawn as wall in ``frame``."""
-    return max(WALL_THICKNESS, frame.metres_per_pixel)
+    return max(WALL_BAND, frame.metres_per_pixel)
 
 
 def static_layers(room: Room, frame: Frame, openings=None) -> np.ndarray:

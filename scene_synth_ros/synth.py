@@ -52,8 +52,6 @@ from . import catalog
 from .categories import RoomTypeSpec, resolve_room_type, room_spec
 from .errors import SceneSynthError, UnknownCategory, quoted, sentence
 from .geometry import (
-    FLOOR_TOLERANCE,
-    MIN_SUPPORT,
     door_zone,
     enters_zone,
     overlaps_any,
@@ -78,6 +76,7 @@ from .rules import groups, robot
 from .rules.insertion import INCREMENTAL_RULES, INSERTION_RULES, rule_categories
 from .rules.robot import Robot, RobotReport, RobotState
 from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
+from .thresholds import FLOOR_TOLERANCE, MIN_SUPPORT
 from .user_catalog import load_catalog
 
 # What ``Synthesis.timings`` counts seconds of (see the module docstring).

@@ -15,8 +15,8 @@ from scene_synth_ros.export.physics import (
     model_pieces,
     scene_bodies,
 )
-from scene_synth_ros.geometry import COLLISION_TOLERANCE
 from scene_synth_ros.scene import PlacedObject, Room, Scene
+from scene_synth_ros.thresholds import COLLISION_TOLERANCE
 
 
 def _extent(pieces):

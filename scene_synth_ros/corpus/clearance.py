@@ -19,19 +19,18 @@ import math
 
 from shapely.geometry import Polygon
 
-from ..categories import CATEGORIES
-from ..rules.access import (
+from ..categories import CATEGORIES, members
+from ..rules.access import SEATS as TABLE_SEATS
+from ..rules.access import STORAGE, USED_FRONT
+from ..scene import PlacedObject
+from ..thresholds import (
     BED_CLEARANCE,
     ENTRY_STRETCH,
     FIXTURE_CLEARANCE,
-    STORAGE,
+    HEAD_END,
     STORAGE_CLEARANCE,
-    USED_FRONT,
     WALL_CLEARANCE,
 )
-from ..rules.access import SEATS as TABLE_SEATS
-from ..rules.groups import HEAD_END
-from ..scene import PlacedObject
 
 MARGIN = 0.05
 BED_SLACK = 0.2
@@ -40,7 +39,7 @@ BED_SLACK = 0.2
 NIGHTSTAND = (CATEGORIES['stand'].width[1] + 0.06, CATEGORIES['stand'].depth[1])
 # A desk's, a dressing table's or a piano's seat stands in front of it: the place is kept for
 # the seat alone, as deep as a chair pulled up to it (design guides ask 0.75-0.9 m).
-SEATED_FRONT = ('desk', 'dressing table', 'piano')
+SEATED_FRONT = members('worktop')
 SEAT_SPOT = 0.8
 
 

@@ -10,7 +10,7 @@ them, and so on, each keeping off the floor the pieces before it keep clear and 
 floor it needs itself (``clearance``). Last, ``tidy`` does what a designer would on a walk
 through the room: it takes out what the robot cannot reach and what stands outside its group.
 Second-tier objects then go on a surface that can hold them and where a designer expects
-them (``design_rules.groups.PLAUSIBLE_PARENTS``).
+them, by the weights of their category's description (``categories.PLAUSIBLE_PARENTS``).
 """
 from __future__ import annotations
 
@@ -22,7 +22,7 @@ import numpy as np
 
 from .. import catalog
 from ..catalog import ModelVariant
-from ..categories import CATEGORIES, paper_spec
+from ..categories import CATEGORIES, members, paper_spec
 from ..rules import access, groups
 from ..scene import PlacedObject
 from .layout import Layout
@@ -44,28 +44,11 @@ PHASE = {
 PAIRED = {'stand', 'loudspeaker'}
 
 # The beds of a bedroom: one main bed, sometimes a second one.
-MAIN_BEDS = ('double bed', 'single bed', 'bunker bed', 'daybed')
+MAIN_BEDS = members('main bed')
 
-# Where second-tier objects prefer to stand; unlisted parents that can support the child
-# get weight 1.
-PARENT_WEIGHT = {
-    'table lamp': {'stand': 8, 'desk': 2, 'dresser': 1.5, 'dressing table': 1.5},
-    'television': {'tv stand': 12, 'dresser': 2, 'desk': 0.5},
-    'console': {'tv stand': 10},
-    'laptop': {'desk': 10, 'dressing table': 1, 'coffee table': 2},
-    'book': {'shelving': 4, 'desk': 3, 'stand': 2},
-    'plant': {'shelving': 2, 'desk': 2, 'tv stand': 2, 'sink': 3, 'coffee table': 2},
-    'vase': {'coffee table': 3, 'dresser': 2, 'tv stand': 2, 'fireplace': 2},
-    'toy': {'shelving': 3, 'bathtub': 4, 'single bed': 2},
-    'fishbowl': {'dresser': 2, 'shelving': 2, 'desk': 2},
-    'cup': {'coffee table': 5, 'desk': 3},
-    'glass': {'coffee table': 5},
-    'bottle': {'coffee table': 5},
-    'fruit bowl': {'coffee table': 5},
-}
 ONE_PER_PARENT = {'television', 'console', 'laptop', 'table lamp', 'fishbowl', 'fruit bowl'}
 SYMMETRIC = {'plant', 'vase', 'cup', 'glass', 'bottle', 'fruit bowl', 'fishbowl', 'toy'}
-SEATED_BY = ('desk', 'dressing table', 'piano')
+SEATED_BY = members('worktop')
 
 
 def draw_count(rate: float, rng: np.random.Generator, paired: bool = False) -> int:
@@ -380,15 +363,14 @@ def place_first_tier(lay: Layout, category: str, variant: ModelVariant) -> Place
 def place_second_tier(lay: Layout, category: str, variant: ModelVariant) -> PlacedObject | None:
     """Put a second-tier object on a parent that can support it, preferred ones first."""
     spec = paper_spec(lay.room.room_type)
-    plausible = groups.PLAUSIBLE_PARENTS.get(category)
+    weights = dict(spec.info(category).parents)
     parents = [p for p in lay.first_tier(*spec.supports(category))
-               if plausible is None or p.category in plausible]
+               if not weights or p.category in weights]
     if category in ONE_PER_PARENT:
         parents = [p for p in parents
                    if not any(c.category == category for c in lay.scene.children_of(p.id))]
     if not parents:
         return None
-    weights = PARENT_WEIGHT.get(category, {})
     w = np.array([weights.get(p.category, 1.0) for p in parents])
     order = lay.rng.choice(len(parents), size=len(parents), replace=False, p=w / w.sum())
     pool = sorted(catalog.variants(category), key=lambda m: m.width * m.depth)

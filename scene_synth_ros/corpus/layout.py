@@ -20,8 +20,8 @@ from ..geometry import (
     shrunk_footprint,
     support_fraction,
 )
-from ..rules.walls import WINDOW_ZONE_DEPTH
 from ..scene import PlacedObject, Room, Scene, Wall, rotation
+from ..thresholds import WINDOW_ZONE_DEPTH
 from .clearance import Zone, zones
 
 TOUCH = 0.002           # footprints may touch: 2 mm of numerical slack

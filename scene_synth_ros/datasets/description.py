@@ -13,6 +13,9 @@ windows per room; and per category:
   on one;
 * ``against_wall``: whether most of its objects have their back within ``WALL_GAP`` of a
   wall (``back_gap``);
+* ``roles``: what it is for, as the design rules ask it (``categories.ROLES``: bed, table
+  seat, storage, ...); written for the categories the paper's table names, to be edited for
+  the others;
 * ``width``, ``depth``, ``height``: min, median and max in metres (our convention: width
   across the front, depth back to front);
 * ``importance``: the package's importance (``categories.RoomCategorySpec``): the mean
@@ -22,7 +25,7 @@ windows per room; and per category:
 
 This carries what ``categories.RoomTypeSpec`` / ``CategoryInfo`` hold (room count, size
 cap, doors and windows per room, per category its count, frequency, tier, size ranges,
-parents, against-wall flag and importance). ``load`` reads a (possibly edited) file back
+parents, against-wall flag, roles and importance). ``load`` reads a (possibly edited) file back
 and checks it; each problem is one sentence (``DatasetError``).
 """
 from __future__ import annotations
@@ -36,6 +39,7 @@ from typing import Any, Iterable
 import numpy as np
 from shapely.geometry import LineString, Point, Polygon
 
+from ..categories import ROLES, roles_of
 from ..errors import DatasetError, quoted
 from ..scene import Room
 from .assemble import room_span
@@ -160,7 +164,7 @@ class Describer:
                 'room_types': types}
 
     def _type(self, rt: str, t: _TypeTally) -> dict[str, Any]:
-        cats = {name: _category(seen, t.rooms, t.rooms_with[name])
+        cats = {name: _with_roles(name, _category(seen, t.rooms, t.rooms_with[name]))
                 for name, seen in sorted(t.objects.items(), key=lambda kv: (-len(kv[1]), kv[0]))}
         cap = self.config.size_limit(rt)
         if cap is None:
@@ -197,6 +201,12 @@ def _category(seen: list[_Seen], rooms: int, rooms_with: int) -> dict[str, Any]:
     return entry
 
 
+def _with_roles(name: str, entry: dict[str, Any]) -> dict[str, Any]:
+    """``entry`` with the roles the paper's table gives category ``name``, where it has any."""
+    roles = roles_of(name)
+    return {**entry, 'roles': sorted(roles)} if roles else entry
+
+
 HEADER = """\
 # Data-set description written by `scene-synth import` (scene_synth_ros.datasets.description).
 # Per room type: rooms, size_cap (side of the square its rooms fit in, m), doors and windows
@@ -231,6 +241,7 @@ class CategoryDescription:
     depth: tuple[float, float, float]
     height: tuple[float, float, float]
     importance: float
+    roles: frozenset[str] = frozenset()
 
 
 @dataclass(frozen=True)
@@ -346,6 +357,13 @@ def _check_category(cat: str, e: Any, at: str) -> CategoryDescription:
         imp = importance({'width': dict(zip(('min', 'median', 'max'), ranges[0], strict=True)),
                           'depth': dict(zip(('min', 'median', 'max'), ranges[1], strict=True)),
                           'per_room': per_room})
+    roles = e.get('roles') or []
+    _need(isinstance(roles, list) and all(isinstance(r, str) for r in roles),
+          f'{at}.roles must be a list of role names')
+    unknown = sorted(set(roles) - set(ROLES))
+    _need(not unknown, f'{at}.roles names {quoted(unknown[0]) if unknown else ""}, which is not '
+          f'a role; the roles are {", ".join(ROLES)}')
     return CategoryDescription(cat, count, per_room, tier, tuple(map(str, parents)),
                                bool(e.get('against_wall', False)), ranges[0], ranges[1],
-                               ranges[2], float(_number(imp, f'{at}.importance')))
+                               ranges[2], float(_number(imp, f'{at}.importance')),
+                               frozenset(roles))

@@ -47,7 +47,7 @@ def room_type_spec(rt: RoomTypeDescription, source: str = '') -> RoomTypeSpec:
         info = CategoryInfo(c.name, c.tier, (c.width[0], c.width[2]), (c.depth[0], c.depth[2]),
                             (c.height[0], c.height[2]), parents, c.against_wall,
                             f'{c.count} in {rt.rooms} {rt.room_type} rooms'
-                            + (f' of {source}' if source else ''))
+                            + (f' of {source}' if source else ''), c.roles)
         cats.append(RoomCategorySpec(info, c.count, c.per_room, c.importance))
     if not any(c.tier == 'first' for c in cats):
         raise DatasetError(f'room type {rt.room_type!r} of the data set has no category that '

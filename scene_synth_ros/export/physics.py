@@ -44,9 +44,10 @@ import numpy as np
 from shapely.geometry import LineString, Point, Polygon
 
 from ..catalog import Catalog, ModelVariant
-from ..geometry import COLLISION_TOLERANCE, shrunk_footprint
+from ..geometry import shrunk_footprint
 from ..meshes import build_parts, variant_for
 from ..scene import PlacedObject, Room, Scene, rotation
+from ..thresholds import COLLISION_TOLERANCE
 
 GRAVITY = 9.81            # m/s^2, along -z
 

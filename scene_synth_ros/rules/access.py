@@ -3,10 +3,10 @@
 Clearances are measured on *clear strips*: the floor strip that starts at one side of an
 object's footprint and runs ``depth`` metres out from it, as wide as that side is long. A
 strip is blocked along the stretch of the side where another first-tier footprint, shrunk
-by ``TOLERANCE`` on every side, or the outside of the floor, grown by ``TOLERANCE``, enters
+by ``CLEARANCE_TOLERANCE`` on every side, or the outside of the floor, grown by it, enters
 it (an obstacle blocks the whole depth of the stretch it covers: one cannot stand behind
 it). ``clear_stretch`` is the longest unblocked stretch; a side "has ``depth`` clear" when
-that stretch is the whole side less ``TOLERANCE`` at each end. Second-tier objects never
+that stretch is the whole side less ``CLEARANCE_TOLERANCE`` at each end. Second-tier objects never
 block: they stand on their parents.
 
 storage_clearance
@@ -64,52 +64,32 @@ import shapely
 from shapely.geometry import Polygon
 from shapely.prepared import prep
 
-from ..geometry import ROBOT_WIDTH, shrunk_footprint
+from ..categories import members
+from ..geometry import shrunk_footprint
 from ..scene import PlacedObject, Scene
+from ..thresholds import (
+    BED_CLEARANCE,
+    BED_STRETCH,
+    CLEARANCE_TOLERANCE,
+    ENTRY_STRETCH,
+    FIXTURE_CLEARANCE,
+    STORAGE_CLEARANCE,
+    WALL_CLEARANCE,
+)
 from . import robot
 from .robot import OPERATED_FRONT, Robot
 from .rule import BEDS, Outcome, Rule
 from .spatial import side
 
-# A footprint that enters a strip by 2 cm or less, or a wall that does, leaves it clear: the
-# corpus places neighbours 2 mm apart and synthesized rooms have a little yaw jitter, and a
-# 2 cm overhang stops neither a drawer nor a robot.
-TOLERANCE = 0.02
-
-# Storage: 0.5 m is the least depth in front of wardrobe doors and drawers that lets them
-# open and a person stand in front of them (design guides ask for 0.6-0.9 m).
-STORAGE_CLEARANCE = 0.5
-STORAGE = ('wardrobe', 'dresser', 'dressing table', 'shelving', 'shoes cabinet', 'cabinet',
-           'washer')
+STORAGE = members('storage')
 # The seat of a dressing table is pulled out to use it, so it does not block the table.
-SEATS = ('office chair', 'straight chair', 'chair', 'stool', 'ottoman', 'bench chair')
+SEATS = members('loose seat')
 
-# Fixtures: the usual activity spaces of bathroom planning guides: 0.6 m in front of a WC or
-# a bidet, 0.5 m in front of a washbasin, 0.6 m at a shower's entry, 0.5 m along the side of
-# a bath from which one gets in.
-FIXTURE_CLEARANCE = {'toilet': 0.6, 'bidet': 0.6, 'sink': 0.5, 'shower': 0.6, 'bathtub': 0.5}
-# Where one gets in needs only part of the side clear: a shower door is about 0.6 m wide, and
-# one steps into a bath somewhere along its long side, over a person's 0.6 m of shoulders.
-ENTRY_STRETCH = {'shower': 0.6, 'bathtub': 0.6}
 
-# Beds: the robot's width is the least useful gap beside a bed (the review's threshold), and
-# 0.6 m of a side, a person's shoulders, is where one gets in.
-BED_CLEARANCE = ROBOT_WIDTH
-BED_STRETCH = 0.6
+assert set(FIXTURE_CLEARANCE) == set(members('fixture'))
+USED_FRONT = OPERATED_FRONT + BEDS + members('armchair') + members('chair') + ('sofa',)
 
-# Fronts a person uses: one should not face a wall closer than 0.3 m (a wardrobe's doors, a
-# chair's knees, a toilet's user).
-WALL_CLEARANCE = 0.3
-assert set(STORAGE) | set(FIXTURE_CLEARANCE) <= set(OPERATED_FRONT)
-USED_FRONT = OPERATED_FRONT + BEDS + (
-    'sofa', 'sofa chair', 'armchair', 'office chair', 'straight chair', 'chair')
-
-# The robot reaches an object when its body gets within 0.15 m of it: close enough to look at
-# or grasp what is there, without asking for a free corridor wider than the robot. It is the
-# robot of the product's robot promise by default (``robot.Robot()``), so synthesis keeps
-# this rule unless a user asks for another robot.
-ROBOT_REACH = 0.15
-RULE_ROBOT = Robot(radius=ROBOT_WIDTH / 2, reach=ROBOT_REACH)
+RULE_ROBOT = Robot()
 
 # ---- clear strips ------------------------------------------------------------------------
 def _strip(obj: PlacedObject, which: str, depth: float) -> tuple[Polygon, np.ndarray, float]:
@@ -136,14 +116,14 @@ class _Obstacles:
         self.objects = scene.first_tier
         room = scene.room
         self.floor = room.remembered(
-            ('floor grown', TOLERANCE),
-            lambda: room.polygon.buffer(TOLERANCE, join_style='mitre'))
-        self._floor = room.remembered(('floor grown, prepared', TOLERANCE),
+            ('floor grown', CLEARANCE_TOLERANCE),
+            lambda: room.polygon.buffer(CLEARANCE_TOLERANCE, join_style='mitre'))
+        self._floor = room.remembered(('floor grown, prepared', CLEARANCE_TOLERANCE),
                                       lambda: prep(self.floor))
 
     @cached_property
     def _shrunk(self) -> list[Polygon]:
-        return [shrunk_footprint(o, TOLERANCE) for o in self.objects]
+        return [shrunk_footprint(o, CLEARANCE_TOLERANCE) for o in self.objects]
 
     @cached_property
     def _tree(self) -> shapely.STRtree:
@@ -191,7 +171,7 @@ def _longest_gap(spans: list[tuple[float, float]], length: float) -> float:
 
 def _whole(stretch_and_length: tuple[float, float]) -> bool:
     stretch, length = stretch_and_length
-    return stretch >= length - 2 * TOLERANCE
+    return stretch >= length - 2 * CLEARANCE_TOLERANCE
 
 
 # ---- the rules ---------------------------------------------------------------------------
@@ -205,7 +185,7 @@ def _entered_by(new: PlacedObject | None, obj: PlacedObject, depth: float) -> bo
     a piece added to a room changes no other piece's clear front (``new`` None: every piece
     counts)."""
     return (new is None or obj is new
-            or _strip(obj, 'front', depth)[0].intersects(new.footprint(TOLERANCE)))
+            or _strip(obj, 'front', depth)[0].intersects(new.footprint(CLEARANCE_TOLERANCE)))
 
 
 def storage_verdicts(scene: Scene, new: PlacedObject | None = None) -> dict[int, bool]:
@@ -231,7 +211,7 @@ def storage_clearance(scene: Scene) -> Outcome:
 def _fixture_clear(room: _Obstacles, obj: PlacedObject) -> bool:
     found = room.clear_stretch(obj, 'front', FIXTURE_CLEARANCE[obj.category])
     if obj.category in ENTRY_STRETCH:
-        return found[0] >= min(ENTRY_STRETCH[obj.category], found[1] - 2 * TOLERANCE)
+        return found[0] >= min(ENTRY_STRETCH[obj.category], found[1] - 2 * CLEARANCE_TOLERANCE)
     return _whole(found)
 
 
@@ -250,7 +230,7 @@ def fixture_clearance(scene: Scene) -> Outcome:
 
 def _side_usable(room: _Obstacles, bed: PlacedObject, which: str) -> bool:
     stretch, length = room.clear_stretch(bed, which, BED_CLEARANCE)
-    return stretch >= min(BED_STRETCH, length - 2 * TOLERANCE)
+    return stretch >= min(BED_STRETCH, length - 2 * CLEARANCE_TOLERANCE)
 
 
 def _bed_accessible(room: _Obstacles, bed: PlacedObject) -> bool:

@@ -12,7 +12,7 @@ The thresholds are module constants, each with the practice or the corpus rule i
 chair, straight chair, chair or stool is *seated at it*: the seat's centre lies in front of
 the table's front side and within its width, the seat's footprint is within ``SEAT_REACH``
 (0.6 m) of the table's and the seat faces the table: the direction from the seat's centre to
-the nearest point of the table's footprint is within ``SEAT_FACING`` (45 degrees) of where the
+the nearest point of the table's footprint is within ``SEATED_FACING`` (45 degrees) of where the
 seat faces.
 
 ``chair_at_table``: the case is an office chair, straight chair or chair; it keeps the rule
@@ -34,8 +34,8 @@ stand is at its head as in ``nightstand_by_bed``.
 
 ``bath_in_corner``: the case is a bathtub or a shower; it keeps the rule when it touches two
 walls that are not parallel (directions at least ``CORNER_ANGLE``, 60 degrees, apart), a wall
-touching it when at least ``WALL_CONTACT`` (0.25 m) of the wall's segment lies within
-``WALL_REACH`` (0.10 m) of its footprint.
+touching it when at least ``WALL_CONTACT_RUN`` (0.25 m) of the wall's segment lies within
+``WALL_CONTACT_GAP`` (0.10 m) of its footprint.
 
 ``sofa_faces_table_or_tv``: the case is a sofa; it keeps the rule when the centre of a coffee
 table, TV stand or television lies within ``VIEW_RANGE`` (5 m) of the sofa's centre and within
@@ -43,7 +43,7 @@ table, TV stand or television lies within ``VIEW_RANGE`` (5 m) of the sofa's cen
 
 ``coffee_table_has_seating``: the case is a coffee table; it keeps the rule when a sofa, sofa
 chair, armchair or daybed has its footprint within ``LOUNGE_REACH`` (1.0 m) of the table's
-and faces it (nearest point of the table within ``SEAT_FACING`` of its facing).
+and faces it (nearest point of the table within ``SEATED_FACING`` of its facing).
 
 ``tv_square_on_stand``: the case is a television on a TV stand or a dresser; it keeps the rule
 when its yaw is within ``TV_SQUARE`` (10 degrees) of its parent's, so it faces the room the
@@ -66,83 +66,43 @@ import numpy as np
 import shapely
 from shapely.geometry import LineString, Polygon
 
-from ..categories import CATEGORIES
+from ..categories import CATEGORIES, members
 from ..scene import PlacedObject, Scene, wrap_angle
+from ..thresholds import (
+    BIDET_GAP,
+    CORNER_ANGLE,
+    HEAD_END,
+    LOUNGE_REACH,
+    NIGHTSTAND_GAP,
+    SAME_LINE_ANGLE,
+    SAME_LINE_OFFSET,
+    SEAT_REACH,
+    SEATED_FACING,
+    SQUARE_ANGLE,
+    TV_SQUARE,
+    VIEW_ANGLE,
+    VIEW_RANGE,
+    WALL_CONTACT_GAP,
+    WALL_CONTACT_RUN,
+)
 from .rule import Outcome, Rule, category_of
 from .spatial import bearing, off_axes
 
-# ---- thresholds ------------------------------------------------------------------------
-# A seated person reaches about 0.6 m past the seat's front edge; the corpus puts chairs
-# 0.02-0.2 m from a desk's front and 0.3-0.5 m from a coffee table's end.
-SEAT_REACH = 0.6
-# Half of a right angle: a seat turned further than this is turned away from its table.
-SEAT_FACING = math.radians(45)
-# A nightstand is within arm's reach of the pillow: the corpus leaves 2-6 cm, a designer up to
-# about a hand's span more.
-NIGHTSTAND_GAP = 0.3
-# The pillow end of a bed: the first 0.6 m of its sides from the headboard (a nightstand is at
-# most 0.5 m deep and stands with its back in line with the headboard).
-HEAD_END = 0.6
-# A bidet shares the toilet's plumbing wall, a step away; the corpus leaves 0.15-0.3 m.
-BIDET_GAP = 0.6
-# Two pieces on one wall line: parallel within this angle, backs within this offset.
-SAME_LINE_ANGLE = math.radians(10)
-SAME_LINE_OFFSET = 0.15
-# Touching a wall: within 10 cm of it (the wall-contact tolerance of the review) over a run of
-# at least 0.25 m, so that grazing a wall's end at a corner does not count.
-WALL_REACH = 0.10
-WALL_CONTACT = 0.25
-# Two walls make a corner when they meet at a real angle, not a slight bend of one wall.
-CORNER_ANGLE = math.radians(60)
-# From a sofa a TV is watched, and a coffee table reached, within about 5 m (the corpus puts
-# the TV stand 1.2-5 m across from the sofa) and within 30 degrees of straight ahead (beyond
-# that the head turns).
-VIEW_RANGE = 5.0
-VIEW_ANGLE = math.radians(30)
-# Lounge seating serves a coffee table within about a metre (the corpus leaves 0.2-0.5 m).
-LOUNGE_REACH = 1.0
-# A TV on its stand is square to it: the corpus turns it by at most a few degrees.
-TV_SQUARE = math.radians(10)
-# A seat turned this much or more off the walls reads as left askew, not placed.
-SQUARE_ANGLE = math.radians(15)
-
 # ---- categories ------------------------------------------------------------------------
-SEATS = ('office chair', 'straight chair', 'chair', 'stool')       # seats used at a table
-CHAIRS = ('office chair', 'straight chair', 'chair')                 # chairs that need one
-DESKS = ('desk', 'dressing table')                                   # worktops that need one
-WORKTOPS = ('desk', 'dressing table', 'piano')                       # used from the front
-TABLES = WORKTOPS + ('coffee table',)
-BEDS_WITH_HEAD = ('double bed', 'single bed', 'bunker bed')
-LOUNGE_SEATS = ('sofa', 'sofa chair', 'armchair', 'daybed')
+SEATS = members('table seat')
+CHAIRS = members('chair')
+DESKS = members('desk')
+WORKTOPS = members('worktop')
+TABLES = members('table')
+BEDS_WITH_HEAD = members('headboard bed')
+LOUNGE_SEATS = members('lounge seat')
 SOFA_TARGETS = ('coffee table', 'tv stand', 'television')
 TV_PARENTS = ('tv stand', 'dresser')
-SQUARE_SEATS = SEATS + ('bench chair', 'sofa chair', 'armchair')
+SQUARE_SEATS = SEATS + members('bench') + members('armchair')
 
-# Where a designer expects each second-tier object: the parents of ``corpus.furnish``'s
-# PARENT_WEIGHT and those a room would plausibly show, without the pairings the review flagged
-# (a TV on a desk, a table lamp on a shoe cabinet) or that serve no purpose: a game console
-# belongs by the TV, a laptop where one sits (or charges it at the bedside), tableware where
-# one eats or drinks; nothing stands on a washing machine that vibrates, and a vase would be
-# in the way on a washbasin (a small plant there is the corpus's habit, and a designer's).
-_DECOR = ('stand', 'desk', 'dresser', 'dressing table', 'tv stand', 'coffee table',
-          'shelving', 'shoes cabinet', 'fireplace', 'cabinet')
+# Where a designer expects each second-tier object (``CategoryInfo.parents``).
 PLAUSIBLE_PARENTS: dict[str, tuple[str, ...]] = {
-    'table lamp': ('stand', 'desk', 'dresser', 'dressing table', 'tv stand'),
-    'television': ('tv stand', 'dresser'),
-    'console': ('tv stand',),
-    'laptop': ('desk', 'dressing table', 'coffee table', 'stand'),
-    'book': ('desk', 'stand', 'shelving', 'coffee table', 'dresser', 'double bed',
-             'single bed'),
-    'plant': _DECOR + ('sink',),
-    'vase': _DECOR,
-    'toy': ('shelving', 'desk', 'stand', 'dresser', 'coffee table', 'bathtub', 'cabinet',
-            'double bed', 'single bed', 'bunker bed', 'daybed'),
-    'fishbowl': ('desk', 'dresser', 'shelving', 'tv stand', 'coffee table', 'stand'),
-    'cup': ('coffee table', 'desk', 'stand'),
-    'glass': ('coffee table', 'desk', 'stand'),
-    'bottle': ('coffee table', 'desk', 'stand'),
-    'fruit bowl': ('coffee table', 'desk'),
-}
+    c.name: tuple(p for p, _ in c.parents) for c in CATEGORIES.values() if c.parents}
 
 
 # ---- geometry of groups ----------------------------------------------------------------
@@ -206,7 +166,7 @@ def within_reach(a: PlacedObject, b: PlacedObject, reach: float) -> bool:
     return footprint_gap(a, b) <= reach
 
 
-def faces(obj: PlacedObject, target: PlacedObject, within: float = SEAT_FACING) -> bool:
+def faces(obj: PlacedObject, target: PlacedObject, within: float = SEATED_FACING) -> bool:
     """Whether the direction from ``obj``'s centre to the nearest point of ``target``'s
     footprint is within ``within`` radians of where ``obj`` faces."""
     near = nearest_point(target, obj.position[:2])
@@ -278,7 +238,7 @@ def run_within(obj: PlacedObject, start, end, reach: float) -> float:
 def walls_touched(scene: Scene, obj: PlacedObject) -> list[np.ndarray]:
     """Directions of the walls that ``obj`` touches (see ``bath_in_corner``)."""
     return [wall.direction for wall in scene.room.walls
-            if run_within(obj, wall.start, wall.end, WALL_REACH) >= WALL_CONTACT]
+            if run_within(obj, wall.start, wall.end, WALL_CONTACT_GAP) >= WALL_CONTACT_RUN]
 
 
 def in_corner(scene: Scene, obj: PlacedObject) -> bool:

@@ -30,15 +30,14 @@ import shapely
 from shapely.geometry import Polygon
 from shapely.prepared import prep
 
+from ..categories import members
 from ..geometry import door_parts, free_space, free_space_less, owners_connected
 from ..scene import PlacedObject, Scene, box_corners
+from ..thresholds import ROBOT_RADIUS, ROBOT_REACH
 
 # What is used at its front: one must stand before it (open doors and drawers, sit on a WC,
 # work at a desk). The design rules' access module asks the same of the same categories.
-OPERATED_FRONT = (
-    'wardrobe', 'dresser', 'dressing table', 'shelving', 'shoes cabinet', 'cabinet', 'washer',
-    'toilet', 'bidet', 'sink', 'shower', 'bathtub',
-    'stand', 'tv stand', 'desk', 'piano', 'fireplace', 'whiteboard', 'water machine')
+OPERATED_FRONT = members('operated front')
 
 # A reach zone that the free space meets only along its edge is touched, not entered.
 INSET = 1e-3
@@ -55,11 +54,10 @@ class Robot:
     """A round robot: its radius, how close its body must come to an object to use it (arm's
     reach), and the clearance it keeps from obstacles while driving (all metres)."""
 
-    # The defaults are the design rules' robot (``rules.access.RULE_ROBOT``):
-    # rooms kept reachable for an arm's reach of 0.5 m left 4 % of offices with a front that
-    # the rules' 0.15 m does not reach (README, "The robot promise").
-    radius: float = 0.2
-    reach: float = 0.15
+    # The defaults are the product's robot (``thresholds``), which the design rules judge
+    # rooms for too (``rules.access.RULE_ROBOT``).
+    radius: float = ROBOT_RADIUS
+    reach: float = ROBOT_REACH
     clearance: float = 0.0
 
     def __post_init__(self):

@@ -5,14 +5,14 @@ from dataclasses import dataclass
 import math
 from typing import Callable
 
-from ..categories import CategoryInfo, category_info
+from ..categories import CategoryInfo, category_info, members
 from ..errors import UnknownRoomType
 from ..scene import Scene
 
 Outcome = tuple[int, int]          # (cases that keep the rule, cases) in one room
 
 # Every kind of bed, for the rules of every family that ask about beds.
-BEDS = ('double bed', 'single bed', 'bunker bed', 'baby bed', 'daybed')
+BEDS = members('bed')
 
 
 def category_of(name: str, room_type: str) -> CategoryInfo | None:

@@ -14,10 +14,10 @@ other and its back gap is the gap to the first; a piece with only its side to a 
 one back corner touching and the back running off at an angle, is not backed onto it.
 
 ``wall_contact``: a case is a piece of wall furniture; it keeps the rule when its back gap is
-at most ``WALL_CONTACT`` (10 cm).
+at most ``WALL_CONTACT_GAP`` (10 cm).
 
 ``wall_near_miss``: the same cases; a piece keeps the rule unless its back gap is more than
-``WALL_CONTACT`` and less than ``NEAR_MISS`` (10 to 40 cm): a slot behind it that neither
+``WALL_CONTACT_GAP`` and less than ``NEAR_MISS`` (10 to 40 cm): a slot behind it that neither
 reads as against the wall nor is wide enough to use.
 
 ``no_floating_large_pieces``: a case is a piece of a *large* wall category, one whose mean
@@ -27,7 +27,7 @@ fireplaces, bathtubs, showers, sinks and washers (not nightstands, shoe cabinets
 cabinets, water machines, WC pans or bidets). It floats, and breaks the rule, when its
 footprint is more than ``FLOAT_WALL_GAP`` (0.4 m) from every wall and more than ``GROUP_GAP``
 (0.5 m) from every first-tier piece it forms a group with (``PARTNERS``): a seat turned to
-within ``SEAT_FACING`` (60 degrees) of facing the desk, dressing table or piano it serves;
+within ``GROUPED_SEAT_FACING`` (60 degrees) of facing the desk, dressing table or piano it serves;
 another desk; a nightstand, bench or ottoman by a bed; a coffee table, easy chair, ottoman or
 side table by a sofa. The other large pieces have no partner that excuses them from a wall.
 
@@ -49,55 +49,27 @@ object, tall or low, in every room the corpus or the synthesizer makes.
 """
 from __future__ import annotations
 
-import math
 from typing import Sequence
 
 import numpy as np
 import shapely
 from shapely.geometry import Polygon
 
-from ..categories import CATEGORIES, RoomTypeSpec, room_spec
+from ..categories import CATEGORIES, RoomTypeSpec, members, room_spec
 from ..errors import UnknownRoomType
-from ..geometry import ROBOT_WIDTH
 from ..scene import Opening, PlacedObject, Room, Scene, Wall, box_corners
+from ..thresholds import (
+    FLOAT_WALL_GAP,
+    GROUP_GAP,
+    GROUPED_SEAT_FACING,
+    LARGE_FOOTPRINT,
+    NEAR_MISS,
+    WALL_CONTACT_GAP,
+    WINDOW_SHARE,
+    WINDOW_ZONE_DEPTH,
+)
 from .rule import BEDS, Rule
 from .spatial import bearing
-
-# A back within 10 cm of the wall reads as against it: skirting boards, sockets and cables
-# take a few centimetres, and the corpus leaves 0-4 cm; a hand's width (10 cm) is already a
-# slot a designer sees.
-WALL_CONTACT = 0.10
-
-# A gap narrower than the robot (0.4 m) behind a piece is dead space nobody can use or clean,
-# so 10-40 cm off the wall is a near miss; from 0.4 m on the piece stands free on purpose.
-NEAR_MISS = ROBOT_WIDTH
-
-# The pieces a room is planned around, whose place mid-room a designer notices: wall
-# categories of at least a washing machine's footprint. It takes in the pieces the review
-# found floating (pianos 0.89, fireplaces 0.67, TV stands 0.64, desks 0.95 m^2), every bed,
-# sofa, storage unit, bath and shower, and leaves out the small fittings (nightstands 0.21,
-# WC pans 0.26, shoe cabinets 0.29 m^2), which ``wall_contact`` holds to the wall.
-LARGE_FOOTPRINT = 0.35
-
-# Within a robot width of a wall a piece is at the wall (at worst a near miss: nothing can
-# pass behind it); farther out it stands in the room.
-FLOAT_WALL_GAP = ROBOT_WIDTH
-
-# The widest gap the corpus's group placements leave between partners (a coffee table
-# 0.35-0.5 m before a sofa; seats 0.02-0.2 m from desks; nightstands 0.02-0.06 m from beds).
-GROUP_GAP = 0.5
-
-# A seat turned more than 60 degrees away from a desk (its back or side to it) is not sitting
-# at it; the corpus turns seats at most a few degrees off facing their desk.
-SEAT_FACING = math.radians(60.0)
-
-# A piece taller than the sill and within 20 cm of the glass stands in front of the window:
-# it takes the light and puts the handle out of reach; farther out it stands beside the view.
-WINDOW_ZONE_DEPTH = 0.20
-
-# A quarter of a window's width is the most that may be hidden: a floor lamp or the corner of
-# a wardrobe at the edge, not a wardrobe in front of it.
-WINDOW_SHARE = 0.25
 
 # The paper's wall furniture and large pieces. The rules ask ``wall_categories``, which gives
 # these for the paper's room types and reads a data set's own category set for its types.
@@ -130,8 +102,8 @@ def wall_categories(room_type: str) -> tuple[frozenset[str], frozenset[str]]:
     return hit[1], hit[2]
 
 
-_SEATS = frozenset({'office chair', 'chair', 'straight chair', 'stool', 'bench chair'})
-SEATED = frozenset({'desk', 'dressing table', 'piano'})    # their seat partners face them
+_SEATS = frozenset(members('table seat') + members('bench'))
+SEATED = frozenset(members('worktop'))    # their seat partners face them
 PARTNERS: dict[str, frozenset[str]] = {
     **{bed: frozenset({'stand', 'bench chair', 'ottoman'}) for bed in BEDS},
     'desk': _SEATS | {'desk'},
@@ -227,7 +199,7 @@ def _back_gaps(scene: Scene) -> tuple[list[PlacedObject], np.ndarray]:
 def wall_contact_verdicts(scene: Scene) -> dict[str, bool]:
     """Whether each piece of wall furniture (by id) keeps ``wall_contact``."""
     pieces, gaps = _back_gaps(scene)
-    return {o.id: bool(g <= WALL_CONTACT) for o, g in zip(pieces, gaps, strict=True)}
+    return {o.id: bool(g <= WALL_CONTACT_GAP) for o, g in zip(pieces, gaps, strict=True)}
 
 
 def measure_wall_contact(scene: Scene) -> tuple[int, int]:
@@ -237,7 +209,7 @@ def measure_wall_contact(scene: Scene) -> tuple[int, int]:
 
 def measure_wall_near_miss(scene: Scene) -> tuple[int, int]:
     _, gaps = _back_gaps(scene)
-    return int(np.sum((gaps <= WALL_CONTACT) | (gaps >= NEAR_MISS))), len(gaps)
+    return int(np.sum((gaps <= WALL_CONTACT_GAP) | (gaps >= NEAR_MISS))), len(gaps)
 
 
 def is_partner(piece: PlacedObject, other: PlacedObject) -> bool:
@@ -246,7 +218,7 @@ def is_partner(piece: PlacedObject, other: PlacedObject) -> bool:
     if other is piece or other.category not in PARTNERS.get(piece.category, ()):
         return False
     return not (piece.category in SEATED and other.category in _SEATS
-                and bearing(other, piece) > SEAT_FACING)
+                and bearing(other, piece) > GROUPED_SEAT_FACING)
 
 
 def floating(scene: Scene) -> list[PlacedObject]:
@@ -345,11 +317,11 @@ def measure_beds_not_across_windows(scene: Scene) -> tuple[int, int]:
 RULES: tuple[Rule, ...] = (
     Rule('wall_contact', 'walls',
          'Each piece of wall furniture (a first-tier category meant to stand against a wall) has '
-         f'both back corners within {WALL_CONTACT * 100:.0f} cm of the same wall.',
+         f'both back corners within {WALL_CONTACT_GAP * 100:.0f} cm of the same wall.',
          measure_wall_contact),
     Rule('wall_near_miss', 'walls',
          'Each piece of wall furniture has its back either within '
-         f'{WALL_CONTACT * 100:.0f} cm of a wall or at least {NEAR_MISS * 100:.0f} cm from '
+         f'{WALL_CONTACT_GAP * 100:.0f} cm of a wall or at least {NEAR_MISS * 100:.0f} cm from '
          'every wall, not a near miss in between.',
          measure_wall_near_miss),
     Rule('no_floating_large_pieces', 'walls',
