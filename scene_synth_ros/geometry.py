@@ -2,11 +2,15 @@
 for a robot between the doors.
 
 These are the checks the procedural corpus is held to, the rejection rules of insertion,
-and the plausibility metrics of the evaluation: one definition for all three.
+and the plausibility metrics of the evaluation: one definition for all three. Footprints are
+shapely polygons (``PlacedObject.footprint``) where a room's floor, walls and zones take part;
+between two boxes, the box questions at the end of the module are answered exactly in plain
+floats, as the design rules ask them of many small pairs.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import math
 
 import numpy as np
 import shapely
@@ -21,11 +25,6 @@ from .thresholds import (
     MIN_SUPPORT,
     ROBOT_WIDTH,
 )
-
-
-def shrunk_footprint(obj: PlacedObject, by: float) -> Polygon:
-    """The footprint with every side moved inwards by ``by`` metres (never inverted)."""
-    return obj.footprint(by)
 
 
 def door_zone(room: Room, door: Opening) -> Polygon:
@@ -49,20 +48,20 @@ def door_entry_point(room: Room, door: Opening, robot_width: float = ROBOT_WIDTH
 def overlaps_any(obj: PlacedObject, others, tol: float = COLLISION_TOLERANCE) -> bool:
     """Whether ``obj`` interpenetrates any of ``others`` by more than ``tol`` (the pairwise
     rule of ``collisions``)."""
-    mine = shrunk_footprint(obj, tol / 2)
-    return any(mine.intersects(shrunk_footprint(o, tol / 2)) for o in others)
+    mine = obj.footprint(tol / 2)
+    return any(mine.intersects(o.footprint(tol / 2)) for o in others)
 
 
 def enters_zone(obj: PlacedObject, zone: Polygon, tol: float = COLLISION_TOLERANCE) -> bool:
     """Whether ``obj`` enters a door's clear ``zone`` by more than ``tol`` (the rule of
     ``blocked_doors``)."""
-    return zone.intersects(shrunk_footprint(obj, tol))
+    return zone.intersects(obj.footprint(tol))
 
 
 def collisions(scene: Scene, tol: float = COLLISION_TOLERANCE) -> list[tuple[str, str]]:
     """Pairs of first-tier objects that interpenetrate by more than ``tol``."""
     objs = scene.first_tier
-    shrunk = [shrunk_footprint(o, tol / 2) for o in objs]
+    shrunk = [o.footprint(tol / 2) for o in objs]
     if len(shrunk) < 2:
         return []
     tree = shapely.STRtree(shrunk)
@@ -183,3 +182,67 @@ class ValidityReport:
 def check_scene(scene: Scene) -> ValidityReport:
     return ValidityReport(collisions(scene), off_floor(scene), blocked_doors(scene),
                           under_supported(scene), doors_connected(scene))
+
+
+# ---- footprints as exact boxes --------------------------------------------------------
+# The design rules compare many small pairs of boxes, where shapely's and numpy's per-call
+# overhead dominates: these answer box questions in plain floats, exactly.
+
+def local_xy(obj: PlacedObject, xy) -> tuple[float, float]:
+    """A world point in ``obj``'s frame: x towards its front, y to its left."""
+    dx, dy = float(xy[0]) - obj.position[0], float(xy[1]) - obj.position[1]
+    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
+    return c * dx + s * dy, c * dy - s * dx
+
+
+def nearest_point(obj: PlacedObject, xy) -> tuple[float, float]:
+    """The point of ``obj``'s footprint nearest to ``xy`` (``xy`` itself when inside)."""
+    x, y = local_xy(obj, xy)
+    x = min(max(x, -obj.depth / 2), obj.depth / 2)
+    y = min(max(y, -obj.width / 2), obj.width / 2)
+    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
+    return obj.position[0] + c * x - s * y, obj.position[1] + s * x + c * y
+
+
+def corners(obj: PlacedObject) -> list[tuple[float, float]]:
+    """The footprint's corners, as ``PlacedObject.corners`` but without numpy (these rules
+    compare many small pairs, where array overhead dominates)."""
+    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
+    x0, y0 = obj.position[0], obj.position[1]
+    hx, hy = obj.depth / 2, obj.width / 2
+    return [(x0 + c * x - s * y, y0 + s * x + c * y)
+            for x, y in ((-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy))]
+
+
+def _half_extent(obj: PlacedObject, ux: float, uy: float) -> float:
+    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
+    return abs(c * ux + s * uy) * obj.depth / 2 + abs(c * uy - s * ux) * obj.width / 2
+
+
+def overlap(a: PlacedObject, b: PlacedObject) -> bool:
+    """Whether two footprints touch or overlap (separating-axis test on their four axes)."""
+    dx, dy = b.position[0] - a.position[0], b.position[1] - a.position[1]
+    for o in (a, b):
+        c, s = math.cos(o.yaw), math.sin(o.yaw)
+        for ux, uy in ((c, s), (-s, c)):
+            if abs(dx * ux + dy * uy) > _half_extent(a, ux, uy) + _half_extent(b, ux, uy):
+                return False
+    return True
+
+
+def footprint_gap(a: PlacedObject, b: PlacedObject) -> float:
+    """Metres between two footprints, 0 when they overlap: shapely's distance computed for
+    rectangles directly (apart, two convex polygons are nearest at a corner of one)."""
+    if overlap(a, b):
+        return 0.0
+    return min(min(math.dist(v, nearest_point(q, v)) for v in corners(p))
+               for p, q in ((a, b), (b, a)))
+
+
+def within_reach(a: PlacedObject, b: PlacedObject, reach: float) -> bool:
+    """Whether the footprints of ``a`` and ``b`` are at most ``reach`` apart (checked first on
+    the circles around them, which rules out most pairs at once)."""
+    bound = (math.hypot(a.width, a.depth) + math.hypot(b.width, b.depth)) / 2 + reach
+    if math.dist(a.position[:2], b.position[:2]) > bound:
+        return False
+    return footprint_gap(a, b) <= reach

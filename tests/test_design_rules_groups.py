@@ -6,6 +6,7 @@ import pytest
 import shapely
 from shapely.geometry import LineString
 
+from scene_synth_ros.geometry import footprint_gap
 from scene_synth_ros.rules import groups
 from scene_synth_ros.scene import PlacedObject, Room, Scene
 
@@ -222,7 +223,7 @@ def test_footprint_gap_is_shapelys_distance_between_the_rectangles():
         a, b = (PlacedObject(name, 'desk', 'desk_00', (*rng.uniform(0, 3, 2), 0.0),
                              float(rng.uniform(-math.pi, math.pi)),
                              (*rng.uniform(0.1, 2.0, 2), 1.0)) for name in 'ab')
-        assert groups.footprint_gap(a, b) == pytest.approx(
+        assert footprint_gap(a, b) == pytest.approx(
             a.footprint().distance(b.footprint()), abs=1e-9)
 
 

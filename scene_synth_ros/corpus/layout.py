@@ -12,16 +12,14 @@ from shapely.prepared import prep
 
 from ..catalog import ModelVariant
 from ..geometry import (
-    MIN_SUPPORT,
     door_zone,
     doors_connected,
     free_space,
     free_space_less,
-    shrunk_footprint,
     support_fraction,
 )
 from ..scene import PlacedObject, Room, Scene, Wall, rotation
-from ..thresholds import WINDOW_ZONE_DEPTH
+from ..thresholds import MIN_SUPPORT, WINDOW_ZONE_DEPTH
 from .clearance import Zone, zones
 
 TOUCH = 0.002           # footprints may touch: 2 mm of numerical slack
@@ -75,7 +73,7 @@ class Layout:
         fp = obj.footprint()
         if not self._floor.contains(fp):
             return None
-        inner = shrunk_footprint(obj, TOUCH)
+        inner = obj.footprint(TOUCH)
         if any(z.intersects(inner) for z in self._door_zones):
             return None
         if self._first:
@@ -141,7 +139,7 @@ class Layout:
         before = self._robot_free
         self.scene.objects.append(obj)
         self._first.append((obj, obj.footprint()))
-        self._shrunk[obj.id] = shrunk_footprint(obj, TOUCH)
+        self._shrunk[obj.id] = obj.footprint(TOUCH)
         self._zones += kept or []
         if not check_path:
             self._robot_free = None

@@ -19,9 +19,9 @@ Collision pieces
 Clearance
     Every piece is clipped to the object's box moved in by ``clearance`` on each side
     (5 mm, half the 1 cm by which synthesis and the corpus let two footprints
-    interpenetrate: ``geometry.COLLISION_TOLERANCE``), and further in on a side whose
+    interpenetrate: ``thresholds.COLLISION_TOLERANCE``), and further in on a side whose
     corners stand outside where the object may be: through a wall for a first-tier object
-    (``geometry.FLOOR_TOLERANCE`` allows 1 cm), beyond its parent's top (less the clearance)
+    (``thresholds.FLOOR_TOLERANCE`` allows 1 cm), beyond its parent's top (less the clearance)
     for a second-tier one, which may overhang by 30 % and would otherwise reach into a
     taller neighbour of its parent. So the exported poses start without interpenetration and
     rest as they are; the visual mesh keeps the full size. Heights are never clipped: a
@@ -44,7 +44,6 @@ import numpy as np
 from shapely.geometry import LineString, Point, Polygon
 
 from ..catalog import Catalog, ModelVariant
-from ..geometry import shrunk_footprint
 from ..meshes import build_parts, variant_for
 from ..scene import PlacedObject, Room, Scene, rotation
 from ..thresholds import COLLISION_TOLERANCE
@@ -301,7 +300,7 @@ def body_of(obj: PlacedObject, room: Room, parent: PlacedObject | None = None,
     as a plant on a nightstand does into a taller desk beside it. ``catalog``: the user's
     models the object may show (``meshes.variant_for``)."""
     variant = variant_for(obj, catalog)
-    region = room.polygon if parent is None else shrunk_footprint(parent, config.clearance)
+    region = room.polygon if parent is None else parent.footprint(config.clearance)
     insets = np.full(4, config.clearance) + outside_insets(obj, region)
     pieces = clipped_pieces(model_pieces(variant, config.merge), obj.size, insets)
     mass = density(obj.category) * obj.width * obj.depth * obj.height

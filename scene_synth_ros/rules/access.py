@@ -40,7 +40,7 @@ front_not_to_wall
 
 front_reachable
     Case: a first-tier object in a room with at least one door. Kept when a round robot of
-    ``geometry.ROBOT_WIDTH`` (0.4 m) driving in from a door can bring its body within
+    ``thresholds.ROBOT_WIDTH`` (0.4 m) driving in from a door can bring its body within
     ``ROBOT_REACH`` (0.15 m) of the object: straight in front of its front side (its centre
     within the strip as wide as the front and robot radius plus reach deep) for the objects
     operated at the front (``OPERATED_FRONT``: storage, nightstand, TV stand, desk, bathroom
@@ -65,7 +65,6 @@ from shapely.geometry import Polygon
 from shapely.prepared import prep
 
 from ..categories import members
-from ..geometry import shrunk_footprint
 from ..scene import PlacedObject, Scene
 from ..thresholds import (
     BED_CLEARANCE,
@@ -123,7 +122,7 @@ class _Obstacles:
 
     @cached_property
     def _shrunk(self) -> list[Polygon]:
-        return [shrunk_footprint(o, CLEARANCE_TOLERANCE) for o in self.objects]
+        return [o.footprint(CLEARANCE_TOLERANCE) for o in self.objects]
 
     @cached_property
     def _tree(self) -> shapely.STRtree:

@@ -67,6 +67,7 @@ import shapely
 from shapely.geometry import LineString, Polygon
 
 from ..categories import CATEGORIES, members
+from ..geometry import local_xy, nearest_point, within_reach
 from ..scene import PlacedObject, Scene, wrap_angle
 from ..thresholds import (
     BIDET_GAP,
@@ -106,66 +107,6 @@ PLAUSIBLE_PARENTS: dict[str, tuple[str, ...]] = {
 
 
 # ---- geometry of groups ----------------------------------------------------------------
-def local_xy(obj: PlacedObject, xy) -> tuple[float, float]:
-    """A world point in ``obj``'s frame: x towards its front, y to its left."""
-    dx, dy = float(xy[0]) - obj.position[0], float(xy[1]) - obj.position[1]
-    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
-    return c * dx + s * dy, c * dy - s * dx
-
-
-def nearest_point(obj: PlacedObject, xy) -> tuple[float, float]:
-    """The point of ``obj``'s footprint nearest to ``xy`` (``xy`` itself when inside)."""
-    x, y = local_xy(obj, xy)
-    x = min(max(x, -obj.depth / 2), obj.depth / 2)
-    y = min(max(y, -obj.width / 2), obj.width / 2)
-    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
-    return obj.position[0] + c * x - s * y, obj.position[1] + s * x + c * y
-
-
-def corners(obj: PlacedObject) -> list[tuple[float, float]]:
-    """The footprint's corners, as ``PlacedObject.corners`` but without numpy (these rules
-    compare many small pairs, where array overhead dominates)."""
-    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
-    x0, y0 = obj.position[0], obj.position[1]
-    hx, hy = obj.depth / 2, obj.width / 2
-    return [(x0 + c * x - s * y, y0 + s * x + c * y)
-            for x, y in ((-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy))]
-
-
-def _half_extent(obj: PlacedObject, ux: float, uy: float) -> float:
-    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
-    return abs(c * ux + s * uy) * obj.depth / 2 + abs(c * uy - s * ux) * obj.width / 2
-
-
-def overlap(a: PlacedObject, b: PlacedObject) -> bool:
-    """Whether two footprints touch or overlap (separating-axis test on their four axes)."""
-    dx, dy = b.position[0] - a.position[0], b.position[1] - a.position[1]
-    for o in (a, b):
-        c, s = math.cos(o.yaw), math.sin(o.yaw)
-        for ux, uy in ((c, s), (-s, c)):
-            if abs(dx * ux + dy * uy) > _half_extent(a, ux, uy) + _half_extent(b, ux, uy):
-                return False
-    return True
-
-
-def footprint_gap(a: PlacedObject, b: PlacedObject) -> float:
-    """Metres between two footprints, 0 when they overlap: shapely's distance computed for
-    rectangles directly (apart, two convex polygons are nearest at a corner of one)."""
-    if overlap(a, b):
-        return 0.0
-    return min(min(math.dist(v, nearest_point(q, v)) for v in corners(p))
-               for p, q in ((a, b), (b, a)))
-
-
-def within_reach(a: PlacedObject, b: PlacedObject, reach: float) -> bool:
-    """Whether the footprints of ``a`` and ``b`` are at most ``reach`` apart (checked first on
-    the circles around them, which rules out most pairs at once)."""
-    bound = (math.hypot(a.width, a.depth) + math.hypot(b.width, b.depth)) / 2 + reach
-    if math.dist(a.position[:2], b.position[:2]) > bound:
-        return False
-    return footprint_gap(a, b) <= reach
-
-
 def faces(obj: PlacedObject, target: PlacedObject, within: float = SEATED_FACING) -> bool:
     """Whether the direction from ``obj``'s centre to the nearest point of ``target``'s
     footprint is within ``within`` radians of where ``obj`` faces."""
