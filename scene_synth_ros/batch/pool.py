@@ -69,7 +69,7 @@ def pool_results(spec: WorkerSpec, groups: list[RoomGroup], workers: int,
     """The rooms of ``groups`` furnished by ``workers`` processes, a group at a time each,
     each room as it ends, each worker's in the order it made them (so that models it sends
     once come before a later room that names them). A worker that dies (killed, out of
-    memory) costs the rooms in flight that had not come back, which fail with ``LOST``; the
+    memory) costs the rooms in flight that had not come back, which fail with ``worker.LOST``; the
     others go on in new processes, unless a pool dies before furnishing anything. The
     workers are spawned, not forked, where they use CUDA (``spawn`` None: as the synthesis
     device says; see ``parallel``)."""
