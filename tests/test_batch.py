@@ -379,14 +379,16 @@ def test_rooms_come_back_one_by_one_and_ctrl_c_mid_group_keeps_them(tiny_weights
 def test_spawned_workers_furnish_the_rooms_of_forked_ones(tiny_weights):
     """Workers that use CUDA are spawned, not forked (``parallel``): a spawned worker starts
     from nothing but what it is sent, and furnishes the same rooms."""
-    from scene_synth_ros.batch import Source, WorkerSpec, _groups, _pool_results
+    from scene_synth_ros.batch import Source, WorkerSpec
+    from scene_synth_ros.batch.pool import pool_results
+    from scene_synth_ros.batch.worker import lockstep_groups
     from scene_synth_ros.synth import SynthConfig
     source = Source.shells(['bathroom'])
     jobs = [source.load(j) for j in source.jobs(5, 3)]
-    groups = _groups(jobs, {j.index for j in jobs}, 1)
+    groups = lockstep_groups(jobs, {j.index for j in jobs}, 1)
     spec = WorkerSpec('generate', str(tiny_weights), SynthConfig(runtime='torch'))
     made = {spawn: {r.row['index']: (stable(r.row), r.files)
-                    for r in _pool_results(spec, groups, 1, spawn=spawn)}
+                    for r in pool_results(spec, groups, 1, spawn=spawn)}
             for spawn in (False, True)}
     assert sorted(made[True]) == [0, 1, 2]
     assert all(row['status'] == 'ok' for row, _ in made[True].values())
