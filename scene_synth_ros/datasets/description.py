@@ -357,7 +357,7 @@ def _check_category(cat: str, e: Any, at: str) -> CategoryDescription:
         imp = importance({'width': dict(zip(('min', 'median', 'max'), ranges[0], strict=True)),
                           'depth': dict(zip(('min', 'median', 'max'), ranges[1], strict=True)),
                           'per_room': per_room})
-    roles = e.get('roles') or []
+    roles = e['roles'] if 'roles' in e else sorted(roles_of(cat))
     _need(isinstance(roles, list) and all(isinstance(r, str) for r in roles),
           f'{at}.roles must be a list of role names')
     unknown = sorted(set(roles) - set(ROLES))
