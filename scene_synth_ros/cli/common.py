@@ -123,9 +123,9 @@ def robot_options(c) -> None:
 
 def robot_from(args):
     """The ``robot.Robot`` of ``robot_options``; an error naming the flag when they make
-    none."""
+    none (the robot checks the ranges: they are its own)."""
     from ..robot import Robot
-    values = {name.removeprefix('robot_'): flag_value(s, args)
+    values = {name.removeprefix('robot_'): getattr(args, flag_dest(s))
               for name, (s, _) in ROBOT_SETTINGS.items()}
     try:
         return Robot(**values)
