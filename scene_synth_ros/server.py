@@ -113,10 +113,9 @@ class ServerConfig:
 # name -> (description, numeric range or allowed strings, read only), from ServerConfig's
 # settings. The node builds its parameter descriptors from this table, and ``check``
 # enforces the same limits.
-PARAMETERS: dict[str, tuple[str, Any, bool]] = {
-    name: (s.description, s.limits, s.read_only)
-    for name, (s, _) in settings_of(ServerConfig).items()}
 _SETTINGS = settings_of(ServerConfig)
+PARAMETERS: dict[str, tuple[str, Any, bool]] = {
+    name: (s.description, s.limits, s.read_only) for name, (s, _) in _SETTINGS.items()}
 
 # The head of config/scene_synth_node.yaml (``parameters_file``).
 _FILE_HEAD = """\
@@ -143,6 +142,7 @@ def parameters_file() -> str:
         lines += [f'    # {line}' for line in textwrap.wrap(about, 88)]
         lines.append('    ' + yaml.safe_dump({name: default}, width=1000).strip())
     return '\n'.join(lines) + '\n'
+
 
 REQUESTS = ('generate', 'next_object', 'reset', 'suggest')
 # The worker's order, by what a request costs: a layout first (it supersedes everything

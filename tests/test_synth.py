@@ -2,6 +2,8 @@
 shipped weights."""
 import itertools
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -403,6 +405,13 @@ def test_config_refuses_a_value_out_of_its_range_in_one_sentence_naming_it(tiny_
         Synthesizer(tiny_weights, changed)
     with pytest.raises(ConfigError, match='location_temperature must be between 0.05 and 5'):
         Synthesizer(tiny_weights).generate(ROOM, config=changed)
+
+
+def test_the_configuration_table_imports_no_torch():
+    # The command line's parser and the node's parameter table read it.
+    code = ('import sys, scene_synth_ros.synth_config; '
+            "sys.exit('torch' in sys.modules)")
+    assert subprocess.run([sys.executable, '-c', code]).returncode == 0
 
 
 def test_a_calls_config_is_its_own_and_leaks_into_no_other_call(tiny_weights):
