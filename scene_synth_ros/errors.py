@@ -64,6 +64,11 @@ class UnknownCategory(SceneSynthError, ValueError):
     """A category name that is not one of ``categories.CATEGORIES``."""
 
 
+class ConfigError(SceneSynthError, ValueError):
+    """A setting's value that cannot be used (out of its range, of the wrong type): one
+    sentence naming the setting (``synth_config.check_value``)."""
+
+
 class DatasetError(SceneSynthError, ValueError):
     """A data set that cannot be imported or described at all (a missing or unreadable
     mapping file, a bad option, a broken data-set description); problems with single rooms

@@ -16,12 +16,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, fields, replace
 import itertools
-import math
 import os
 from pathlib import Path
+import textwrap
 import threading
 import time
 from typing import Any, Callable
+
+import yaml
 
 from .catalog import PROCEDURAL, Catalog
 from .categories import (
@@ -33,6 +35,7 @@ from .categories import (
 )
 from .errors import (
     CatalogError,
+    ConfigError,
     SceneSynthError,
     UnknownRoomType,
     quoted,
@@ -43,93 +46,105 @@ from .export import FORMATS as EXPORT_FORMATS
 from .export import UnknownFormat, parse_formats
 from .files import write_atomic
 from .markers import MARKER_STYLES
-from .networks.config import RUNTIMES, resolve_device
+from .networks.config import resolve_device
 from .rules import robot
-from .rules.robot import CLEARANCE_RANGE, RADIUS_RANGE, REACH_RANGE, Robot, RobotReport
+from .rules.robot import Robot, RobotReport
 from .scene import PlacedObject, Scene
 from .schema import dump_scene, parse_room_layout
 from .synth import MODULES, SynthConfig, SynthesisCancelled, Synthesizer, check_room_fits
+from .synth_config import check_value, setting, settings_of, shared
 from .user_catalog import load_catalog
 
 OK, WARN, ERROR = 0, 1, 2               # the levels of diagnostic_msgs/DiagnosticStatus
-DEVICES = ('auto', 'cpu', 'cuda')
 CATALOG_FILE = 'catalog.json'           # what `scene-synth catalog build FOLDER` writes
 SERVICE_TIMEOUT = 120.0                 # seconds a service waits for the worker
 
 
 @dataclass
 class ServerConfig:
-    """The node's parameters (same names), with their defaults."""
+    """The node's parameters (same names) with their defaults, each with its ``Setting``
+    (``synth_config``): the synthesis settings the node exposes are those of
+    ``SynthConfig`` (``shared``), the rest are the node's own."""
 
-    room_type: str = 'bedroom'          # for rooms that arrive as a bare polygon
-    seed: int = 0                       # first seed; every furnishing takes the next one
-    location_temperature: float = 0.8
-    max_objects: int = 30
-    device: str = 'auto'
-    runtime: str = 'auto'               # what runs the networks (networks/runtime.py)
-    weights_dir: str = ''               # '' = the weights shipped in the package
-    catalog_dir: str = ''               # '' = the procedural catalog; else FOLDER/catalog.json
-    frame_id: str = 'map'
-    marker_style: str = 'cube'
-    auto_generate: bool = True          # furnish as soon as a layout arrives
-    wall_height: float = 2.6            # for rooms that arrive as a bare polygon
-    export_dir: str = ''                # '' = no export; else the JSON + export_formats
-    export_formats: str = 'sdf,gltf'    # comma list of export.FORMATS written to export_dir
-    torch_threads: int = 1              # 1 beat 2 on 2 cores beside a client (bench_node)
-    max_pending: int = 8                # calls that may wait ahead of a service call
-    next_category: str = ''             # what ~/next_object inserts; '' = the model decides
-    suggestions: int = 5                # proposals in a ~/suggest answer
-    robot_radius: float = 0.2           # the robot every room is furnished for (robot.Robot)
-    robot_reach: float = 0.15
-    robot_clearance: float = 0.0
+    room_type: str = setting(
+        'bedroom', 'room type of layouts arriving on ~/room_polygon, one of those of the '
+        'weights: the shipped weights have ' + ', '.join(ROOM_TYPES) + ' (also accepted: '
+        + ', '.join(f"'{a}'" for a in ROOM_TYPE_ALIASES) + '); weights trained on an '
+        'imported data set, its room types')
+    seed: int = setting(
+        0, 'seed of the next room, object or suggestion; reads as the one the next request '
+        'will use (each request takes the next integer); set it to replay a room',
+        bounds=(0, 2**31 - 1))
+    location_temperature: float = shared('location_temperature')
+    max_objects: int = shared('max_objects')
+    device: str = shared('device', 'auto')
+    runtime: str = shared('runtime')
+    weights_dir: str = setting(
+        '', "directory of <room type>.pt bundles; '' = the shipped weights")
+    catalog_dir: str = setting(
+        '', 'folder holding a catalog.json written by `scene-synth catalog build` (or that '
+        "file): your models for the categories it covers; '' = the procedural catalog")
+    frame_id: str = setting('map', 'frame of the published markers, poses and of incoming '
+                            'polygons')
+    marker_style: str = setting('cube', 'objects as boxes (cube) or catalog meshes (mesh)',
+                                choices=MARKER_STYLES)
+    auto_generate: bool = setting(True, 'furnish a room as soon as its layout arrives')
+    wall_height: float = setting(2.6, 'wall height of rooms arriving on ~/room_polygon (m)',
+                                 bounds=(1.8, 6.0))
+    export_dir: str = setting(
+        '', "write every room served here as JSON and in each of export_formats; '' = off")
+    export_formats: str = setting(
+        'sdf,gltf', 'formats written to export_dir, a comma list of: '
+        + ', '.join(EXPORT_FORMATS))
+    # One thread, as the node shares its cores with its clients.
+    torch_threads: int = setting(1, 'CPU threads torch may use', bounds=(1, 64),
+                                 read_only=True)
+    max_pending: int = setting(
+        8, 'service calls that may wait ahead of a call (reset and next_object are served '
+        'before generate and suggest); one more is answered "busy" at once', bounds=(1, 12))
+    next_category: str = setting(
+        '', "category of the objects ~/next_object inserts (e.g. office_chair); '' = the "
+        'category module chooses')
+    suggestions: int = setting(5, 'how many proposals ~/suggest answers with', bounds=(1, 20))
+    robot_radius: float = shared('robot_radius')
+    robot_reach: float = shared('robot_reach')
+    robot_clearance: float = shared('robot_clearance')
 
 
-# name -> (description, numeric range or allowed strings, read only). The node builds its
-# parameter descriptors from this table, and ``check`` enforces the same limits.
+# name -> (description, numeric range or allowed strings, read only), from ServerConfig's
+# settings. The node builds its parameter descriptors from this table, and ``check``
+# enforces the same limits.
+_SETTINGS = settings_of(ServerConfig)
 PARAMETERS: dict[str, tuple[str, Any, bool]] = {
-    'room_type': ('room type of layouts arriving on ~/room_polygon, one of those of the '
-                  'weights: the shipped weights have ' + ', '.join(ROOM_TYPES)
-                  + ' (also accepted: ' + ', '.join(f"'{a}'" for a in ROOM_TYPE_ALIASES)
-                  + '); weights trained on an imported data set, its room types', None,
-                  False),
-    'seed': ('seed of the next room, object or suggestion; reads as the one the next request '
-             'will use (each request takes the next integer); set it to replay a room',
-             (0, 2**31 - 1), False),
-    'location_temperature': ('temperature of the location distribution (paper: 0.8)',
-                             (0.05, 5.0), False),
-    'max_objects': ('most objects in one room', (1, 100), False),
-    'device': ('torch device for the networks', DEVICES, False),
-    'runtime': ('what runs the networks: auto (onnxruntime on the CPU where it is installed, '
-                'else torch), torch or onnxruntime; their rooms are equal in distribution',
-                RUNTIMES, False),
-    'weights_dir': ("directory of <room type>.pt bundles; '' = the shipped weights", None,
-                    False),
-    'catalog_dir': ('folder holding a catalog.json written by `scene-synth catalog build` '
-                    "(or that file): your models for the categories it covers; '' = the "
-                    'procedural catalog', None, False),
-    'frame_id': ('frame of the published markers, poses and of incoming polygons', None,
-                 False),
-    'marker_style': ('objects as boxes (cube) or catalog meshes (mesh)', MARKER_STYLES, False),
-    'auto_generate': ('furnish a room as soon as its layout arrives', None, False),
-    'wall_height': ('wall height of rooms arriving on ~/room_polygon (m)', (1.8, 6.0), False),
-    'export_dir': ("write every room served here as JSON and in each of export_formats; "
-                   "'' = off", None, False),
-    'export_formats': ('formats written to export_dir, a comma list of: '
-                       + ', '.join(EXPORT_FORMATS), None, False),
-    'torch_threads': ('CPU threads torch may use', (1, 64), True),
-    'max_pending': ('service calls that may wait ahead of a call (reset and next_object are '
-                    'served before generate and suggest); one more is answered "busy" at once',
-                    (1, 12), False),
-    'next_category': ("category of the objects ~/next_object inserts (e.g. office_chair); "
-                      "'' = the category module chooses", None, False),
-    'suggestions': ('how many proposals ~/suggest answers with', (1, 20), False),
-    'robot_radius': ('radius of the round robot every room is furnished for: it drives '
-                     'between all doors and reaches every object (m)', RADIUS_RANGE, False),
-    'robot_reach': ("the robot's arm's reach: how close its body must get to an object's "
-                    'front (m)', REACH_RANGE, False),
-    'robot_clearance': ('clearance the robot keeps from furniture and walls while driving '
-                        '(m)', CLEARANCE_RANGE, False),
-}
+    name: (s.description, s.limits, s.read_only) for name, (s, _) in _SETTINGS.items()}
+
+# The head of config/scene_synth_node.yaml (``parameters_file``).
+_FILE_HEAD = """\
+# Parameters of scene_synth_node with their defaults, in the format of
+#   ros2 run scene_synth_ros scene_synth_node --ros-args --params-file <this file>
+# Copy it, change what you need. Each parameter's meaning and range is above it; the same
+# as `ros2 param describe` and `ros2 run scene_synth_ros scene_synth_node --help` say.
+# The key /** applies it to the node under any name and namespace (-r __ns:=/sim).
+# Written from the parameters' table by scene_synth_ros.server.parameters_file().
+/**:
+  ros__parameters:"""
+
+
+def parameters_file() -> str:
+    """The text of ``config/scene_synth_node.yaml``: every parameter with its default, under
+    its description and range (a test holds the shipped file to it). To write it again:
+    ``python -c "from scene_synth_ros.server import parameters_file as f; print(f(), end='')"
+    > config/scene_synth_node.yaml``."""
+    lines = [_FILE_HEAD]
+    for name, (s, default) in _SETTINGS.items():
+        about = s.description + (f'; {s.limits_text()}' if s.limits is not None else '')
+        if s.read_only:
+            about += '; read-only'
+        lines += [f'    # {line}' for line in textwrap.wrap(about, 88)]
+        lines.append('    ' + yaml.safe_dump({name: default}, width=1000).strip())
+    return '\n'.join(lines) + '\n'
+
+
 REQUESTS = ('generate', 'next_object', 'reset', 'suggest')
 # The worker's order, by what a request costs: a layout first (it supersedes everything
 # queued), then the calls of one insertion at most (reset: none), then the whole-room ones.
@@ -141,10 +156,6 @@ SHORT = 1
 # the short ones, in arrival order: short calls overtake it for a while, never for ever. A
 # shorter time put short calls behind whole rooms as soon as the queue was long (node_load).
 PROMOTE_AFTER = 5.0
-
-
-class ConfigError(SceneSynthError, ValueError):
-    """A parameter value that cannot be used, said in one sentence."""
 
 
 # Checked once the weights are loaded: their data set may define room types and categories
@@ -181,41 +192,20 @@ def load_catalog_dir(value: str) -> Catalog:
 
 def check(name: str, value: Any) -> Any:
     """``value`` for parameter ``name``, normalised, or ConfigError saying why not."""
-    if name not in PARAMETERS:
+    if name not in _SETTINGS:
         raise ConfigError(f'{name} is not a parameter of scene_synth_node')
-    limits = PARAMETERS[name][1]
-    default = getattr(ServerConfig, name)
-    if isinstance(default, bool):
-        if not isinstance(value, bool):
-            raise ConfigError(f'{name} must be true or false, got {value!r}')
-        return value
-    if isinstance(default, (int, float)):
-        return _check_number(name, value, default, limits)
-    return _check_text(name, value, limits)
+    value = check_value(name, value, _SETTINGS[name][0])
+    return _check_text(name, value) if isinstance(value, str) else value
 
 
-def _check_number(name: str, value: Any, default: int | float, limits) -> int | float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ConfigError(f'{name} must be a number, got {value!r}')
-    if isinstance(default, int) and not float(value).is_integer():
-        raise ConfigError(f'{name} must be an integer, got {value!r}')
-    if not math.isfinite(value) or not limits[0] <= value <= limits[1]:
-        raise ConfigError(f'{name} must be between {limits[0]} and {limits[1]}, '
-                          f'got {value!r}')
-    return type(default)(value)
-
-
-def _check_text(name: str, value: Any, limits) -> str:
-    if not isinstance(value, str):
-        raise ConfigError(f'{name} must be a string, got {value!r}')
+def _check_text(name: str, value: str) -> str:
+    """What a string parameter must be beyond its choices."""
     if name == 'room_type':
         try:
             return resolve_room_type(value)
         except UnknownRoomType:
             raise ConfigError(f'room_type {quoted(value)} is not one of '
                               f'{", ".join(room_types())}') from None
-    if isinstance(limits, tuple) and value not in limits:
-        raise ConfigError(f'{name} must be one of {", ".join(limits)}, got {value!r}')
     if name == 'device':
         try:
             resolve_device(value)
@@ -597,25 +587,26 @@ class SceneServer:
             self._commit(job, Served(scene, job.source, None, catalog=models))
             job.ok = True
             return
-        synth.config = replace(synth.config, location_temperature=cfg.location_temperature,
-                               max_objects=cfg.max_objects, robot=robot_of(cfg),
-                               catalog=models)
+        # This job's settings, passed with each call: the synthesizer is shared.
+        settings = replace(synth.config, location_temperature=cfg.location_temperature,
+                           max_objects=cfg.max_objects, robot=robot_of(cfg), catalog=models)
         seed = self._take_seed()
         self._set_status(busy=True)
         try:
             if job.kind == 'next_object':
-                self._next_object(job, synth, base, seed, cfg.next_category, models)
+                self._next_object(job, synth, base, seed, cfg.next_category, settings)
                 return
             if job.kind == 'suggest':
-                found = synth.suggest(base, cfg.suggestions, seed)
+                found = synth.suggest(base, cfg.suggestions, seed, config=settings)
                 job.ok = True
                 job.message = _json({'seed': seed, 'objects': [o.to_dict() for o in found]})
                 return
             if job.kind == 'generate':
                 result = synth.complete(Scene(base.room, []), seed,
-                                        cancel=lambda: self._between(job))
+                                        cancel=lambda: self._between(job), config=settings)
             else:
-                result = synth.complete(base, seed, cancel=lambda: self._stale(job))
+                result = synth.complete(base, seed, cancel=lambda: self._stale(job),
+                                        config=settings)
         except SynthesisCancelled:
             self._supersede(job)
             return
@@ -634,24 +625,24 @@ class SceneServer:
                                  'seconds': round(result.seconds, 4)})
 
     def _next_object(self, job: _Job, synth: Synthesizer, base: Scene, seed: int,
-                     category: str, models: Catalog) -> None:
+                     category: str, settings: SynthConfig) -> None:
         t0 = time.perf_counter()
         try:
-            obj = synth.next_object(base, seed, category or None)
+            obj = synth.next_object(base, seed, category or None, config=settings)
         except SceneSynthError as e:
             job.message = str(e)
             return
         if obj is None:
             what = f'no {category}' if category else 'nothing more'
             job.message = (f'{what} fits: the room has {len(base)} objects'
-                           + (' (max_objects)' if len(base) >= synth.config.max_objects
+                           + (' (max_objects)' if len(base) >= settings.max_objects
                               else ''))
             return
         scene = base.copy()
         scene.objects.append(obj)
         scene.meta = {**_answered(scene.meta), 'generator': 'scene_synth_ros', 'seed': seed}
         if self._commit(job, Served(scene, 'next_object', seed, [obj],
-                                   time.perf_counter() - t0, catalog=models)):
+                                   time.perf_counter() - t0, catalog=settings.catalog)):
             job.ok, job.message = True, _json(obj.to_dict())
 
     def _take_seed(self) -> int:

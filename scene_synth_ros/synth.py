@@ -74,8 +74,9 @@ from .networks.runtime import OnnxCalls
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer, quarter_turns, turn_image
 from .rules import groups, robot
 from .rules.insertion import INCREMENTAL_RULES, INSERTION_RULES, rule_categories
-from .rules.robot import Robot, RobotReport, RobotState
+from .rules.robot import RobotReport, RobotState
 from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
+from .synth_config import SynthConfig
 from .thresholds import FLOOR_TOLERANCE, MIN_SUPPORT
 from .user_catalog import load_catalog
 
@@ -160,69 +161,6 @@ def check_room_fits(room: Room) -> None:
 
 
 @dataclass
-class SynthConfig:
-    location_temperature: float = 0.8   # tau of the location distribution (paper: 0.8)
-    max_objects: int = 30               # hard cap on objects in a room
-    location_samples: int = 12          # locations tried for one category draw...
-    # ...drawn and decoded this many at a time. One: a placement is decoded only when the
-    # ones before it failed (with 4, half the decoded ones were never tried; batching comes
-    # from rooms in lockstep, ``lockstep``). ``benchmarks/bench_batch.py --location-batch``.
-    location_batch: int = 1
-    # Each drawn location moved to the centre of the blob of the distribution it fell in
-    # (``networks.location.blob_centre``): the networks answer a centroid with a blob as wide
-    # as their training target, and a draw anywhere in it misses a wall by up to a pixel.
-    location_mode: bool = True
-    # ...for the first ``centre_draws`` draws of a category; the later ones (retries, after
-    # those failed) fall anywhere in their pixel. Decoded to a blob's centre, every draw of
-    # one blob is the same point, so a seat that blocks its desk's front there was refused
-    # twelve times over, where a draw a pixel aside keeps the desk reachable
-    # (``benchmarks/design_rules.py``, with the location modules before the shipped ones:
-    # bedroom desks with a seat 43.4 -> 51.9 %, corpus 55 %).
-    centre_draws: int = 4
-    # Locations drawn uniformly over a partner zone (``_mask``) once the location module's
-    # ``location_samples`` there all failed (a departure from the paper, as the zones are):
-    # its heat map puts a seat mid-front of a desk, where the corpus has it, and at a desk
-    # whose only free front is near an end, twelve draws never got there
-    # (``docs/design/investigations.md``).
-    zone_samples: int = 8
-    models_per_location: int = 3        # catalog models tried at one location
-    category_attempts: int = 4          # category draws per insertion before giving up
-    # Log-footprint slack within which co-occurrence decides, for dimensions modules that
-    # answer their mean; one that draws from its learned spread (``dimensions_noise``) has
-    # the nearest model: its draw is the size, and co-occurrence would hand near ties to the
-    # corpus's more frequent narrow models (``docs/design/investigations.md``).
-    fit_slack: float = 0.15
-    snap_threshold: float = 0.5         # snap when the classifier's probability is above this
-    wall_reach: float = 0.25            # push first-tier objects this close to a wall onto it
-                                        # (15 cm left near misses: README, "The synthesis
-                                        # pipeline")
-    robot: Robot = Robot()              # the robot every room is furnished for (``robot``)
-    # Design rules that insertion keeps (``INSERTION_RULES``; a departure from the paper):
-    # the networks leave windows and the fronts of storage and fixtures less clear, wall
-    # furniture off its wall, baths out of corners and pieces of a group further from their
-    # partners than the training rooms do.
-    insertion_rules: tuple[str, ...] = ('windows_clear', 'storage_clearance', 'wall_contact',
-                                        'fixture_clearance', 'bath_in_corner',
-                                        'chair_at_table', 'nightstand_by_bed',
-                                        'bidet_by_toilet', 'coffee_table_has_seating')
-    # Group rules whose broken cases are owed a partner before the room is finished
-    # (``groups.OWED_PARTNERS``; a departure from the paper, as the rules kept at insertion
-    # are): when the category module says STOP while such a case breaks its rule, one of the
-    # partner categories is drawn from the category module instead.
-    owed_partners: tuple[str, ...] = ('coffee_table_has_seating', 'double_bed_has_nightstand')
-    device: str = 'cpu'
-    # What runs the networks (``networks.runtime``): ``auto`` is onnxruntime on the CPU where
-    # it is installed (a quarter less time a room), else torch; ``torch`` or
-    # ``onnxruntime`` to choose. The rooms of the two are equal in distribution.
-    runtime: str = 'auto'
-    # The catalog file (``scene-synth catalog build``) whose models insertion retrieves, in
-    # place of the procedural ones of the categories it covers; None: the procedural
-    # catalog. A path, so that batches can send it to workers (a ``catalog.Catalog`` object
-    # serves one process too).
-    catalog: str | None = None
-
-
-@dataclass
 class Synthesis:
     """The outcome of ``generate`` / ``complete``."""
 
@@ -238,6 +176,7 @@ class Synthesis:
 class _Context:
     """Per-room state shared by the insertions into one room."""
 
+    config: SynthConfig           # the settings of the call furnishing it
     room: Room
     spec: RoomTypeSpec
     bundle: Bundle
@@ -307,14 +246,7 @@ class Synthesizer:
         self.weights_dir = Path(weights_dir) if weights_dir else default_weights()
         self.config = config or SynthConfig()
         self.observer = observer
-        unknown = set(self.config.insertion_rules) - set(INSERTION_RULES)
-        if unknown:
-            raise SynthesisError(f'insertion cannot keep the design rule {quoted(min(unknown))}; '
-                                 f'it keeps {", ".join(INSERTION_RULES)}')
-        unknown = set(self.config.owed_partners) - set(groups.OWED_PARTNERS)
-        if unknown:
-            raise SynthesisError(f'no partner can be owed for the rule {quoted(min(unknown))}; '
-                                 f'the rules that owe one are {", ".join(groups.OWED_PARTNERS)}')
+        _check_rules(self.config)
         try:
             self.device = resolve_device(self.config.device)
             self.runtime = resolve_runtime(self.config.runtime, self.device)
@@ -414,7 +346,25 @@ class Synthesizer:
             self._renderers[resolution] = TopDownRenderer(resolution, cache_size=64)
         return self._renderers[resolution]
 
-    def _context(self, room: Room, seed: int, objects=()) -> _Context:
+    def _settings(self, config: SynthConfig | None) -> SynthConfig:
+        """The settings of one call: ``config``, checked, or the synthesizer's own. Its
+        device and runtime are the synthesizer's: the networks are loaded on them."""
+        if config is None:
+            return self.config
+        _check_rules(config)
+        for name in ('device', 'runtime'):
+            if getattr(config, name) != getattr(self.config, name):
+                raise SynthesisError(
+                    f'a call cannot change the {name} ({quoted(getattr(config, name))}): the '
+                    f'networks are loaded for {quoted(getattr(self.config, name))}; make a '
+                    f'Synthesizer with that {name}')
+        return config
+
+    def _context(self, room: Room, seed: int, objects=(),
+                 config: SynthConfig | None = None) -> _Context:
+        """The state of one room's synthesis with the call's ``config`` (None: the
+        synthesizer's own)."""
+        config = self._settings(config)
         rt = resolve_room_type(room.room_type)
         spec = room_spec(rt)
         for o in objects:
@@ -434,7 +384,8 @@ class Synthesizer:
         for z in zones:
             door_mask |= shapely.contains_xy(z, centres[:, 0], centres[:, 1])
         return _Context(
-            room=room, spec=spec, bundle=bundle, calls=self.calls(rt), frame=frame, grid=grid,
+            config=config, room=room, spec=spec, bundle=bundle, calls=self.calls(rt),
+            frame=frame, grid=grid,
             floor_mask=floor_mask.reshape(n, n), door_mask=door_mask.reshape(n, n),
             centres=centres,
             floor=room.polygon.buffer(FLOOR_TOLERANCE, join_style='mitre'), zones=zones,
@@ -442,24 +393,28 @@ class Synthesizer:
             gen=torch.Generator().manual_seed(int(seed) & 0x7FFF_FFFF_FFFF_FFFF))
 
     # ---- public modes ---------------------------------------------------------------------
-    def generate(self, room: Room | Scene, seed: int = 0, cancel=None) -> Synthesis:
+    def generate(self, room: Room | Scene, seed: int = 0, cancel=None,
+                 config: SynthConfig | None = None) -> Synthesis:
         """Furnish ``room`` from empty (objects of a Scene given here are dropped)."""
         if isinstance(room, Scene):
             room = room.room
         check_room_fits(room)
-        return self.complete(Scene(room, []), seed, cancel)
+        return self.complete(Scene(room, []), seed, cancel, config)
 
-    def complete(self, scene: Scene, seed: int = 0, cancel=None) -> Synthesis:
+    def complete(self, scene: Scene, seed: int = 0, cancel=None,
+                 config: SynthConfig | None = None) -> Synthesis:
         """Add objects to ``scene`` (a copy; what is there stays) until the category module
         says STOP, ``max_objects`` is reached or nothing more fits.
 
         ``cancel``, a callable, is asked before every insertion; when it returns true the
-        call raises ``SynthesisCancelled``."""
+        call raises ``SynthesisCancelled``. ``config``: the settings of this call alone
+        (default: the synthesizer's own; the device and runtime must be those)."""
         t0 = time.perf_counter()
-        ctx = self._context(scene.room, seed, scene.objects)
+        ctx = self._context(scene.room, seed, scene.objects, config)
+        cfg = ctx.config
         out = scene.copy()
         if not scene.first_tier and not self._robot_state(ctx, out).doors_connected:
-            r = self.config.robot
+            r = cfg.robot
             raise SynthesisError(
                 f'a robot of radius {r.radius:g} m'
                 + (f' keeping {r.clearance:g} m clear' if r.clearance else '')
@@ -473,14 +428,14 @@ class Synthesizer:
             while True:
                 if cancel is not None and cancel():
                     raise SynthesisCancelled('superseded by a newer request')
-                if len(out.objects) >= self.config.max_objects:
+                if len(out.objects) >= cfg.max_objects:
                     stopped = 'max_objects'
                     break
                 obj, why = self._insert_one(ctx, out)
                 if obj is None and why == 'stop':
                     # A group still owed a partner gets one more draw, as long as the last
                     # one mended something (a partner that found no case's side ends it).
-                    broken, partners = groups.owed(out, self.config.owed_partners)
+                    broken, partners = groups.owed(out, cfg.owed_partners)
                     if 0 < broken < owing:
                         owing = broken
                         obj, _ = self._insert_one(ctx, out, allow_stop=False, only=partners)
@@ -491,41 +446,42 @@ class Synthesizer:
                 added.append(obj)
                 if self.observer is not None:
                     self.observer.object_added(obj)
-        self._withdraw(out, added)
-        kept = robot.report(out, self.config.robot, self._robot_state(ctx, out))
+        self._withdraw(out, added, cfg.owed_partners)
+        kept = robot.report(out, cfg.robot, self._robot_state(ctx, out))
         out.meta.update({'generator': 'scene_synth_ros', 'seed': int(seed),
                          'weights': ctx.bundle.config.name, 'robot': kept.to_dict()})
         return Synthesis(out, added, stopped, time.perf_counter() - t0, dict(ctx.timings),
                          kept)
 
-    def _withdraw(self, scene: Scene, added: list[PlacedObject]) -> None:
+    @staticmethod
+    def _withdraw(scene: Scene, added: list[PlacedObject], owed: Collection[str]) -> None:
         """Take out of ``scene`` (and ``added``) the pieces this synthesis added that the
-        finished room leaves breaking an owed-partner rule, the draws owed to them having
-        found no partner for them (``groups.withdrawable``: coffee tables without seating),
-        with what stands on them. What the scene held before synthesis stays."""
+        finished room leaves breaking an owed-partner rule of ``owed``, the draws owed to them
+        having found no partner for them (``groups.withdrawable``: coffee tables without
+        seating), with what stands on them. What the scene held before synthesis stays."""
         mine = {o.id for o in added}
-        gone = {t for t in groups.withdrawable(scene, self.config.owed_partners) if t in mine}
+        gone = {t for t in groups.withdrawable(scene, owed) if t in mine}
         gone |= {o.id for o in scene.objects if o.support in gone}
         scene.objects[:] = [o for o in scene.objects if o.id not in gone]
         added[:] = [o for o in added if o.id not in gone]
 
-    def next_object(self, scene: Scene, seed: int = 0,
-                    category: str | None = None) -> PlacedObject | None:
+    def next_object(self, scene: Scene, seed: int = 0, category: str | None = None,
+                    config: SynthConfig | None = None) -> PlacedObject | None:
         """One more object for ``scene`` (not added to it), or None when nothing fits;
         STOP is not drawn. With ``category``, an object of that category: the category
         module is not asked, the other modules are (``UnknownCategory`` if the room type
-        has no such category)."""
-        ctx = self._context(scene.room, seed, scene.objects)
+        has no such category). ``config`` as for ``complete``."""
+        ctx = self._context(scene.room, seed, scene.objects, config)
         if category is not None and category not in ctx.spec:
             raise UnknownCategory(f'{quoted(category)} is not a category of '
                                   f'{scene.room.room_type} rooms')
-        if len(scene.objects) >= self.config.max_objects:
+        if len(scene.objects) >= ctx.config.max_objects:
             return None
         if category is not None:
             # A piece the user names goes by a partner when the room has one; in a room with
             # none, the group rule that would refuse it outright is waived for it.
             ctx.waived = frozenset(
-                rule for rule in self.config.insertion_rules
+                rule for rule in ctx.config.insertion_rules
                 if (zone := groups.partner_zone(scene, rule, category)) is not None
                 and zone.is_empty)
         with torch.inference_mode():
@@ -533,12 +489,12 @@ class Synthesizer:
                                       only=None if category is None else (category,))
         return obj
 
-    def suggest(self, scene: Scene, k: int = 5, seed: int = 0,
-                max_tries: int | None = None) -> list[PlacedObject]:
+    def suggest(self, scene: Scene, k: int = 5, seed: int = 0, max_tries: int | None = None,
+                config: SynthConfig | None = None) -> list[PlacedObject]:
         """Up to ``k`` distinct proposals for the next object (different category, or the
         same category at least half a metre away or facing another way); nothing is
-        committed. STOP is not a proposal."""
-        ctx = self._context(scene.room, seed, scene.objects)
+        committed. STOP is not a proposal. ``config`` as for ``complete``."""
+        ctx = self._context(scene.room, seed, scene.objects, config)
         found: list[PlacedObject] = []
         with torch.inference_mode():
             for _ in range(max_tries or 6 * k):
@@ -567,7 +523,7 @@ class Synthesizer:
             keep[[ctx.spec.index(c) for c in only if c in ctx.spec]] = True
             allowed &= keep
         location = None      # (logits, offsets), for the first category that is not STOP
-        for _ in range(self.config.category_attempts):
+        for _ in range(ctx.config.category_attempts):
             if not bool(allowed.any()):
                 break
             c = self._next_category(ctx, category_logits, allowed)
@@ -636,7 +592,7 @@ class Synthesizer:
         and dimensions (Object Dimensions), then a catalog model that stands there (Object
         Insertion). Locations are drawn ``location_batch`` at a time, so that the orientation
         and dimensions modules see them as one batch."""
-        cfg = self.config
+        cfg = ctx.config
         location_logits, offsets = location
         with ctx.timed('location'):
             mask, zoned = self._mask(ctx, scene, ctx.spec.names[c], small)
@@ -656,7 +612,7 @@ class Synthesizer:
         """The first of ``samples`` locations from ``draws`` where an object of category
         ``c`` stands (the first ``centre_draws`` moved to their blob's centre, with
         ``centre``), drawn ``location_batch`` at a time."""
-        cfg = self.config
+        cfg = ctx.config
         category = ctx.spec.names[c]
         tried = 0
         while tried < samples:
@@ -686,7 +642,7 @@ class Synthesizer:
             # rules insertion keeps (a departure from the paper, as the rules are): the
             # location module spreads such pieces over the room.
             zoned = False
-            for rule in self.config.insertion_rules:
+            for rule in ctx.config.insertion_rules:
                 if rule in ctx.waived:
                     continue
                 zone = groups.partner_zone(scene, rule, category)
@@ -745,7 +701,7 @@ class Synthesizer:
             z = ctx.bundle.networks['orientation'].noise(len(points), ctx.gen, self.device)
             out, snap_logits = ask(ctx.calls, 'orientation', x, cats, z)
             theta = decode_angle(out, ctx.gen)
-            snap = torch.sigmoid(snap_logits) > self.config.snap_threshold
+            snap = torch.sigmoid(snap_logits) > ctx.config.snap_threshold
             return [wrap_angle(ctx.frame.yaw + (snap_angle(th) if s else th))
                     for th, s in zip(theta.tolist(), snap.tolist(), strict=True)]
 
@@ -779,11 +735,11 @@ class Synthesizer:
         the best (none but ties where the footprint was drawn from a learned spread), the
         ones that co-occur most with the models in the room come first (the user's models,
         which no training room holds, keep their footprint order)."""
-        ranked = load_catalog(self.config.catalog).ranked(category, width, depth,
+        ranked = load_catalog(ctx.config.catalog).ranked(category, width, depth,
                                                           ctx.spec.room_type)
         best = catalog.footprint_distance(ranked[0], width, depth)
         drawn = ctx.bundle.networks['dimensions'].log_sigma is not None
-        slack = 0.0 if drawn else self.config.fit_slack
+        slack = 0.0 if drawn else ctx.config.fit_slack
         close = [v for v in ranked
                  if catalog.footprint_distance(v, width, depth) <= best + slack]
         rest = ranked[len(close):]
@@ -813,12 +769,12 @@ class Synthesizer:
             return None
         z = parent.top if parent is not None else 0.0
         models = self.candidate_models(ctx, scene, category, width, depth)
-        for v in models[:self.config.models_per_location]:
+        for v in models[:ctx.config.models_per_location]:
             obj = PlacedObject(scene.new_id(category), category, v.model_id,
                                (float(point[0]), float(point[1]), float(z)), float(yaw),
                                v.size, parent.id if parent is not None else None)
-            if parent is None and self.config.wall_reach > 0:
-                pushed = against_walls(ctx.room, obj, self.config.wall_reach, ctx.rng)
+            if parent is None and ctx.config.wall_reach > 0:
+                pushed = against_walls(ctx.room, obj, ctx.config.wall_reach, ctx.rng)
                 if pushed is not obj and self.fits(ctx, scene, pushed, parent):
                     return pushed
             if self.fits(ctx, scene, obj, parent):
@@ -859,7 +815,7 @@ class Synthesizer:
         after = Scene(scene.room, scene.objects + [obj])
         # The design rules kept at insertion, then the robot promise: what held before this
         # object must hold after it, and the object must keep them itself.
-        for name in self.config.insertion_rules:
+        for name in ctx.config.insertion_rules:
             changed_by = rule_categories(name, ctx.spec.room_type)
             if name in ctx.waived or (changed_by is not None and obj.category not in changed_by):
                 continue
@@ -873,7 +829,7 @@ class Synthesizer:
                 return name
         if ctx.room.doors:
             before = self._robot_state(ctx, scene)
-            now = robot.state_after(before, after, self.config.robot)
+            now = robot.state_after(before, after, ctx.config.robot)
             if not robot.kept(before, now, len(after.first_tier) - 1):
                 return 'robot'
             # The next step starts from it if ``obj`` goes in.
@@ -883,8 +839,23 @@ class Synthesizer:
     def _robot_state(self, ctx: _Context, scene: Scene) -> RobotState:
         key = _first_tier_key(scene)
         if key not in ctx.robot:
-            ctx.robot[key] = robot.state(scene, self.config.robot)
+            ctx.robot[key] = robot.state(scene, ctx.config.robot)
         return ctx.robot[key]
+
+
+def _check_rules(config: SynthConfig) -> None:
+    """SynthesisError unless insertion can keep each of ``config``'s insertion rules and
+    owe a partner for each of its owed-partner rules; its other values are checked again
+    (``SynthConfig.validate``: it may have been changed since it was made)."""
+    config.validate()
+    unknown = set(config.insertion_rules) - set(INSERTION_RULES)
+    if unknown:
+        raise SynthesisError(f'insertion cannot keep the design rule {quoted(min(unknown))}; '
+                             f'it keeps {", ".join(INSERTION_RULES)}')
+    unknown = set(config.owed_partners) - set(groups.OWED_PARTNERS)
+    if unknown:
+        raise SynthesisError(f'no partner can be owed for the rule {quoted(min(unknown))}; '
+                             f'the rules that owe one are {", ".join(groups.OWED_PARTNERS)}')
 
 
 def _first_tier_key(scene: Scene) -> tuple:

@@ -43,7 +43,7 @@ def test_synthesis_bad_input_is_one_sentence(cli, tmp_path):
             (('generate', '--room-type', 'kitchen'), 'unknown room type'),
             (('generate', '--room-type', 'all'), 'one --room-type'),
             (('generate', '--weights-dir', tmp_path), 'no such weights file'),
-            (('generate', '--temperature', '0'), 'must be positive'),
+            (('generate', '--temperature', '0'), '--temperature must be between 0.05 and 5'),
             (('complete', tmp_path / 'nothing.json'), 'no such file'),
             (('suggest', EXAMPLES / 'partial_bedroom.json', '-k', '0'), 'at least 1')]:
         proc = cli(*args, ok=False)
@@ -55,6 +55,38 @@ def test_synthesis_bad_input_is_one_sentence(cli, tmp_path):
     (broken / 'bedroom.pt').write_bytes(b'not a weights file')
     proc = cli('generate', '--weights-dir', broken, ok=False)
     assert proc.returncode == 2 and 'bedroom.pt: not a readable weights file' in proc.stderr
+
+
+def test_synthesis_flags_are_the_settings_and_refuse_what_the_node_refuses(cli):
+    # Every setting with a flag is on each verb that furnishes, with its range in its help,
+    # and a value outside the range the node's parameter has is refused in one sentence
+    # naming the flag, before any weights load.
+    from scene_synth_ros.cli import build_parser
+    from scene_synth_ros.server import PARAMETERS
+    from scene_synth_ros.synth_config import ROBOT_SETTINGS, flag_settings
+    table = {**flag_settings(), **ROBOT_SETTINGS}
+    assert {'location_temperature', 'max_objects', 'device', 'runtime', 'catalog',
+            'robot_radius'} <= set(table)
+    sub = build_parser()._subparsers._group_actions[0].choices
+    for verb in ('generate', 'complete', 'suggest'):
+        flags = {a.option_strings[0]: a for a in sub[verb]._actions if a.option_strings}
+        for name, (s, _) in table.items():
+            assert flags[s.flag].help.startswith(s.description), (verb, s.flag)
+            if s.bounds is not None:
+                assert s.limits_text() in flags[s.flag].help
+                if name in PARAMETERS:            # the node's range is the flag's
+                    assert PARAMETERS[name][1] == s.bounds
+            if s.choices is not None:
+                assert tuple(flags[s.flag].choices) == s.choices
+    for flag, value in (('--temperature', '0.04'), ('--temperature', '5.5'),
+                        ('--max-objects', '0'), ('--max-objects', '101'),
+                        ('--robot-radius', '0.9'), ('--robot-reach', '0')):
+        proc = cli('suggest', EXAMPLES / 'partial_bedroom.json', flag, value, ok=False)
+        assert proc.returncode == 2, proc.stderr
+        assert proc.stderr.startswith(f'scene-synth: {flag} must be between ')
+        assert len(proc.stderr.strip().splitlines()) == 1
+    proc = cli('generate', '--device', 'tpu', ok=False)
+    assert proc.returncode == 2 and "invalid choice: 'tpu'" in proc.stderr
 
 
 @pytest.mark.slow

@@ -15,6 +15,7 @@ from scene_synth_ros import lockstep
 from scene_synth_ros.categories import room_spec
 from scene_synth_ros.corpus import HELDOUT_SEED
 from scene_synth_ros.corpus.generate import empty_room
+from scene_synth_ros.errors import ConfigError
 from scene_synth_ros.geometry import check_scene
 from scene_synth_ros.networks import runtime
 from scene_synth_ros.networks.config import resolve_runtime
@@ -136,8 +137,8 @@ def test_auto_is_onnxruntime_on_the_cpu_and_torch_where_it_cannot_run(monkeypatc
         resolve_runtime('x' * 100_000, cpu)
     assert 'the runtimes are auto, torch, onnxruntime' in str(e.value)
     assert len(str(e.value)) < 200 and '\n' not in str(e.value)
-    with pytest.raises(SynthesisError, match='no runtime'):
-        Synthesizer(config=SynthConfig(runtime='tpu'))
+    with pytest.raises(ConfigError, match='runtime must be one of auto, torch, onnxruntime'):
+        SynthConfig(runtime='tpu')
     # Where onnxruntime is not installed (an import of it fails), auto is torch and asking
     # for it says what to install.
     monkeypatch.setitem(sys.modules, 'onnxruntime', None)

@@ -1,17 +1,31 @@
 """SceneServer: the node's behaviour without ROS, with the shipped weights."""
 from __future__ import annotations
 
+from dataclasses import fields
 import json
 import threading
 import time
 
 import pytest
+import yaml
 
 from scene_synth_ros import server as server_module
 from scene_synth_ros.networks.bundle import BundleError
-from scene_synth_ros.paths import examples_dir, weights_dir
+from scene_synth_ros.paths import config_dir, examples_dir, weights_dir
 from scene_synth_ros.schema import parse_room_layout, parse_scene
-from scene_synth_ros.server import ERROR, OK, WARN, ConfigError, SceneServer, ServerConfig, check
+from scene_synth_ros.server import (
+    ERROR,
+    OK,
+    PARAMETERS,
+    WARN,
+    ConfigError,
+    SceneServer,
+    ServerConfig,
+    check,
+    parameters_file,
+)
+from scene_synth_ros.synth import SynthConfig
+from scene_synth_ros.synth_config import ROBOT_SETTINGS, settings_of
 from scene_synth_ros.user_catalog import load_catalog
 
 LAYOUT = (examples_dir() / 'bedroom_layout.json').read_text()
@@ -178,6 +192,8 @@ def test_parameters_are_checked_and_applied(server):
     served = server.rec.wait(1)
     assert served.scene.room.room_type == 'office' and served.scene.room.wall_height == 3.0
     assert served.seed == 40 and len(served.scene) <= 1
+    # The job's settings went with its calls: the shared synthesizer keeps its own.
+    assert server._synth.config.max_objects == SynthConfig().max_objects
 
 
 def test_rooms_are_furnished_for_the_robot_of_the_parameters(server):
@@ -225,6 +241,24 @@ def test_export_dir_gets_json_sdf_and_gltf(server, tmp_path):
         served.scene.to_dict()
     assert (tmp_path / 'room_00001.sdf').stat().st_size > 0
     assert (tmp_path / 'room_00001.glb').read_bytes()[:4] == b'glTF'
+
+
+def test_the_shipped_parameter_file_is_the_parameters_table_with_its_defaults():
+    text = (config_dir() / 'scene_synth_node.yaml').read_text()
+    assert text == parameters_file(), 'write it again: see server.parameters_file'
+    values = yaml.safe_load(text)['/**']['ros__parameters']
+    defaults = ServerConfig()
+    assert values == {f.name: getattr(defaults, f.name) for f in fields(ServerConfig)}
+    # The node's synthesis settings are SynthConfig's: description, range and default (the
+    # device excepted: the node takes a GPU where there is one).
+    synth = SynthConfig()
+    for name, (s, default) in settings_of(SynthConfig).items():
+        if s.node:
+            assert PARAMETERS[name][:2] == (s.description, s.limits)
+            assert values[name] == (default if name != 'device' else 'auto')
+    for name, (s, default) in ROBOT_SETTINGS.items():
+        assert PARAMETERS[name][:2] == (s.description, s.limits)
+        assert values[name] == default == getattr(synth.robot, name.removeprefix('robot_'))
 
 
 def test_check_rejects_what_the_descriptors_would():
@@ -419,7 +453,7 @@ def test_short_calls_are_served_between_insertions_of_a_running_generate(server)
     # Hold the generate before its second insertion while calls arrive.
     complete, entered, release = server._synth.complete, threading.Event(), threading.Event()
 
-    def held_complete(scene, seed, cancel=None):
+    def held_complete(scene, seed, cancel=None, config=None):
         asked = []
 
         def held_cancel():
@@ -428,7 +462,7 @@ def test_short_calls_are_served_between_insertions_of_a_running_generate(server)
                 entered.set()
                 release.wait(30)
             return cancel()
-        return complete(scene, seed, held_cancel)
+        return complete(scene, seed, held_cancel, config)
     server._synth.complete = held_complete
     calls = Calls(server)
     calls.start('generate', 'generate')

@@ -2,6 +2,8 @@
 shipped weights."""
 import itertools
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -9,6 +11,7 @@ import torch
 
 from scene_synth_ros.categories import ROOM_TYPES, room_spec
 from scene_synth_ros.corpus.generate import empty_room, generate_room
+from scene_synth_ros.errors import ConfigError
 from scene_synth_ros.geometry import check_scene, door_zone
 from scene_synth_ros.networks.bundle import BundleError, load_bundle
 from scene_synth_ros.networks.config import PipelineConfig
@@ -22,6 +25,7 @@ from scene_synth_ros.synth import (
     SynthesisObserver,
     Synthesizer,
 )
+from scene_synth_ros.synth_config import settings_of
 
 
 @pytest.fixture(scope='module')
@@ -344,7 +348,7 @@ def test_snap_threshold(tiny_weights):
            for x, y in square]
     room = Room('bedroom', rot, 2.6)
     always = Synthesizer(tiny_weights, SynthConfig(snap_threshold=0.0))
-    never = Synthesizer(tiny_weights, SynthConfig(snap_threshold=1.1))
+    never = Synthesizer(tiny_weights, SynthConfig(snap_threshold=1.0))   # p > 1: never
 
     def off_axis(scene):
         return [abs(math.remainder(o.yaw - a, math.pi / 2)) for o in scene.objects]
@@ -376,6 +380,68 @@ def test_errors_say_what_is_wrong(tmp_path, tiny_weights):
         Synthesizer(tiny_weights).complete(odd)
     with pytest.raises(SynthesisError, match="no partner can be owed for the rule 'wall_cont"):
         Synthesizer(tiny_weights, SynthConfig(owed_partners=('wall_contact',)))
+
+
+# ---- the configuration ----------------------------------------------------------------------
+def test_config_refuses_a_value_out_of_its_range_in_one_sentence_naming_it(tiny_weights):
+    for name, (s, _) in settings_of(SynthConfig).items():
+        if s.bounds is not None:
+            nan = (float('nan'),) if s.kind is float else ()
+            for bad in (s.bounds[0] - 1, s.bounds[1] + 1, *nan):
+                with pytest.raises(ConfigError, match=f'^{name} must be between '):
+                    SynthConfig(**{name: bad})
+        if s.choices is not None:
+            with pytest.raises(ConfigError, match=f'^{name} must be one of '):
+                SynthConfig(**{name: 'x' * 10_000})
+    for kwargs, says in (({'location_mode': 1}, 'location_mode must be true or false'),
+                         ({'max_objects': 2.5}, 'max_objects must be an integer'),
+                         ({'max_objects': True}, 'max_objects must be a number'),
+                         ({'insertion_rules': ['windows_clear']},
+                          'insertion_rules must be a tuple of names'),
+                         ({'robot': 0.2}, 'robot must be a Robot'),
+                         ({'catalog': 3}, 'catalog must be a string')):
+        with pytest.raises(ConfigError, match=f'^{says}, got ') as e:
+            SynthConfig(**kwargs)
+        assert len(str(e.value)) < 200 and '\n' not in str(e.value)
+    # A config changed after it was made is checked where it is used.
+    changed = SynthConfig()
+    changed.location_temperature = 0.0
+    with pytest.raises(ConfigError, match='location_temperature must be between 0.05 and 5'):
+        Synthesizer(tiny_weights, changed)
+    with pytest.raises(ConfigError, match='location_temperature must be between 0.05 and 5'):
+        Synthesizer(tiny_weights).generate(ROOM, config=changed)
+
+
+def test_the_configuration_table_imports_no_torch():
+    # The command line's parser and the node's parameter table read it.
+    code = ('import sys, scene_synth_ros.synth_config; '
+            "sys.exit('torch' in sys.modules)")
+    assert subprocess.run([sys.executable, '-c', code]).returncode == 0
+
+
+def test_a_calls_config_is_its_own_and_leaks_into_no_other_call(tiny_weights):
+    synth = Synthesizer(tiny_weights)
+    room = empty_room('bedroom', 2)
+    before = synth.generate(room, seed=5)
+    own = SynthConfig(max_objects=2, location_temperature=0.3, centre_draws=0)
+    mine = synth.generate(room, seed=5, config=own)
+    assert len(mine.scene) <= 2
+    # The same room as a synthesizer made with that config furnishes.
+    alone = Synthesizer(tiny_weights, own).generate(room, seed=5)
+    assert mine.scene.to_dict() == alone.scene.to_dict()
+    # The next call without one is the synthesizer's own again, room for room.
+    assert synth.config == SynthConfig()
+    assert synth.generate(room, seed=5).scene.to_dict() == before.scene.to_dict()
+    assert before.scene.objects
+    one = Scene(room, before.scene.objects[:1])
+    assert synth.next_object(one, seed=1, config=SynthConfig(max_objects=1)) is None
+    assert synth.suggest(one, 2, seed=1, config=own) == \
+        Synthesizer(tiny_weights, own).suggest(one, 2, seed=1)
+    # The networks are loaded for the synthesizer's device and runtime: a call keeps them.
+    with pytest.raises(SynthesisError, match="cannot change the runtime \\('torch'\\)"):
+        synth.generate(room, config=SynthConfig(runtime='torch'))
+    with pytest.raises(SynthesisError, match="insertion cannot keep the design rule 'x'"):
+        synth.generate(room, config=SynthConfig(insertion_rules=('x',)))
 
 
 # ---- the shipped weights -------------------------------------------------------------------
@@ -630,12 +696,12 @@ def test_withdraw_takes_out_added_coffee_tables_without_seating_with_what_stands
     lamp = box('table lamp', 0.3, 2.7, 0.3, 0.3, 0.5, oid='lamp')
     scene = Scene(ROOM, [theirs, lamp, mine, vase])
     added = [mine, vase]
-    synth._withdraw(scene, added)
+    synth._withdraw(scene, added, synth.config.owed_partners)
     assert [o.id for o in scene.objects] == ['theirs', 'lamp'] and added == []
     # Seated by a lounge seat, it stays.
     seat = box('armchair', 3.0, 1.1, 0.75, 0.8, yaw=math.pi / 2, oid='seat')
     scene = Scene(ROOM, [mine, vase, seat])
-    synth._withdraw(scene, [mine, vase, seat])
+    synth._withdraw(scene, [mine, vase, seat], synth.config.owed_partners)
     assert [o.id for o in scene.objects] == ['added', 'vase', 'seat']
 
 

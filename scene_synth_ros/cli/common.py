@@ -7,6 +7,7 @@ from pathlib import Path
 
 from ..categories import resolve_room_type
 from ..errors import SceneSynthError
+from ..synth_config import ROBOT_SETTINGS, Setting, check_value
 
 EXIT_BAD_INPUT = 2
 WEIGHTS_DIR_HELP = "trained bundles (default: the package's weights/)"
@@ -89,24 +90,44 @@ def write_scene(scene, out: str | None, png: str | None, title: str, catalog=Non
         print(f'wrote {png}')
 
 
+def setting_flag(c, s: Setting, default, value=None) -> None:
+    """The flag of the synthesis setting ``s`` on parser ``c``: its type, choices, range and
+    help from the setting; ``value`` is what it holds when not given (None: the setting's
+    ``default`` applies). ``flag_value`` checks its range."""
+    text = s.description
+    if s.bounds is not None:            # argparse shows the choices
+        text += f'; {s.limits_text()}'
+    if default is not None:
+        text += f' (default {default})'
+    c.add_argument(s.flag, dest=flag_dest(s), type=s.kind if s.kind in (int, float) else None,
+                   choices=s.choices, default=value, help=text)
+
+
+def flag_dest(s: Setting) -> str:
+    """Where argparse keeps the value of the flag of ``s``."""
+    return s.flag.removeprefix('--').replace('-', '_')
+
+
+def flag_value(s: Setting, args):
+    """The value ``args`` hold for the flag of ``s`` (None when it has none), or an error
+    naming the flag when it is out of the setting's range."""
+    value = getattr(args, flag_dest(s), None)
+    return None if value is None else check_value(s.flag, value, s)
+
+
 def robot_options(c) -> None:
-    """The robot every room is furnished for (``robot.Robot``)."""
-    from ..rules.robot import Robot
-    d = Robot()
-    c.add_argument('--robot-radius', type=float, default=d.radius,
-                   help=f'radius of the round robot that must drive between all doors and '
-                   f'reach every object (default {d.radius} m)')
-    c.add_argument('--robot-reach', type=float, default=d.reach,
-                   help=f"the robot's arm's reach to an object's front (default {d.reach} m)")
-    c.add_argument('--robot-clearance', type=float, default=d.clearance,
-                   help='clearance it keeps from furniture and walls while driving '
-                   f'(default {d.clearance} m)')
+    """The robot every room is furnished for (``robot.Robot``), one flag per number."""
+    for s, default in ROBOT_SETTINGS.values():
+        setting_flag(c, s, default, value=default)
 
 
 def robot_from(args):
-    """The ``robot.Robot`` of ``robot_options``; UserError when they make none."""
+    """The ``robot.Robot`` of ``robot_options``; an error naming the flag when they make
+    none (the robot checks the ranges: they are its own)."""
     from ..rules.robot import Robot
+    values = {name.removeprefix('robot_'): getattr(args, flag_dest(s))
+              for name, (s, _) in ROBOT_SETTINGS.items()}
     try:
-        return Robot(args.robot_radius, args.robot_reach, args.robot_clearance)
+        return Robot(**values)
     except ValueError as e:
         raise UserError(f'--{e}'.replace('--robot ', '--robot-')) from None

@@ -8,18 +8,23 @@ from pathlib import Path
 from ..categories import ROOM_TYPES
 from ..corpus import HELDOUT_SEED
 from ..errors import quoted
-from ..networks.config import RUNTIMES
+from ..synth_config import SynthConfig, flag_settings
 from .common import (
     WEIGHTS_DIR_HELP,
     UserError,
+    flag_value,
     load_catalog,
     load_scene_file,
     object_table,
     robot_from,
     robot_options,
     room_types,
+    setting_flag,
     write_scene,
 )
+
+# The flags of the synthesis settings (the robot's: ``robot_options``).
+_SETTING_FLAGS = flag_settings()
 
 
 def add_parser(sub) -> None:
@@ -83,16 +88,11 @@ def add_parser(sub) -> None:
 
 def _synthesis_options(c, out: bool = True, batch: bool = False) -> None:
     c.add_argument('--seed', type=int, default=0)
-    c.add_argument('--temperature', type=float, help='location temperature (default 0.8)')
-    c.add_argument('--max-objects', type=int, help='cap on objects in the room (default 30)')
     c.add_argument('--weights-dir', help=WEIGHTS_DIR_HELP)
-    c.add_argument('--device', choices=('cpu', 'cuda', 'auto'))
-    c.add_argument('--runtime', choices=RUNTIMES, help="what runs the networks (default "
-                   "auto: onnxruntime on the CPU where it is installed, else torch); the two "
-                   "give rooms equal in distribution, nearly all the same")
-    c.add_argument('--catalog', help='a catalog of your own models (`scene-synth catalog '
-                   'build`): their categories are furnished with them, the others with the '
-                   'procedural models')
+    # The synthesis settings' flags, from their table (``synth_config``); not given, a
+    # setting keeps SynthConfig's default.
+    for s, default in _SETTING_FLAGS.values():
+        setting_flag(c, s, default)
     robot_options(c)
     if out:
         c.add_argument('--out', help='write the scene JSON here (a batch: its directory)')
@@ -129,27 +129,18 @@ def _batch_options(c, layouts: bool) -> None:
 
 
 def _synth_config(args):
-    """The SynthConfig of the options of ``args`` (gallery and demo have only some)."""
-    from ..synth import SynthConfig
-    cfg = SynthConfig()
-    if getattr(args, 'temperature', None) is not None:
-        if not args.temperature > 0:
-            raise UserError(f'--temperature must be positive, got {args.temperature}')
-        cfg.location_temperature = args.temperature
-    if getattr(args, 'max_objects', None) is not None:
-        if args.max_objects < 1:
-            raise UserError(f'--max-objects must be at least 1, got {args.max_objects}')
-        cfg.max_objects = args.max_objects
-    if getattr(args, 'device', None):
-        cfg.device = args.device
-    if getattr(args, 'runtime', None):
-        cfg.runtime = args.runtime
+    """The SynthConfig of the options of ``args`` (gallery and demo have only some); a value
+    out of its setting's range is one sentence naming the flag."""
+    given = {name: value for name, (s, _) in _SETTING_FLAGS.items()
+             if (value := flag_value(s, args)) is not None}
     if hasattr(args, 'robot_radius'):
-        cfg.robot = robot_from(args)
-    if getattr(args, 'catalog', None):
-        load_catalog(args.catalog)           # a bad file is one sentence before any work
-        cfg.catalog = str(Path(args.catalog).resolve())
-    return cfg
+        given['robot'] = robot_from(args)
+    if given.get('catalog'):
+        load_catalog(given['catalog'])       # a bad file is one sentence before any work
+        given['catalog'] = str(Path(given['catalog']).resolve())
+    elif 'catalog' in given:                 # --catalog '': the procedural catalog
+        del given['catalog']
+    return SynthConfig(**given)
 
 
 def _catalog_line(args, room_type: str) -> str | None:
