@@ -92,7 +92,7 @@ import time
 from typing import Callable, Iterator
 
 from . import lockstep
-from .categories import resolve_room_type
+from .categories import PAPER, Vocabulary
 from .errors import SceneSynthError, quoted, sentence
 from .files import write_atomic
 from .limits import MAX_PAYLOAD_BYTES
@@ -206,12 +206,11 @@ class Source:
     path: str = ''
 
     @classmethod
-    def shells(cls, room_types) -> Source:
-        from .categories import defined_room_type
-        types = tuple(resolve_room_type(t) for t in room_types)
+    def shells(cls, room_types, vocabulary: Vocabulary = PAPER) -> Source:
+        types = tuple(vocabulary.resolve(t) for t in room_types)
         if not types:
             raise BatchError('shells need at least one room type')
-        own = [t for t in types if defined_room_type(t)]
+        own = [t for t in types if vocabulary.defines(t)]
         if own:
             raise BatchError(f'{own[0]} is a room type of the data set the weights were '
                              f'trained on, and the corpus makes only the paper\'s rooms: '
@@ -281,15 +280,15 @@ class Source:
         return RoomJob(job.index, job.seed, job.layout, data=data, problem=problem)
 
 
-def scene_from_document(data: bytes, models=None):
+def scene_from_document(data: bytes, models=None, vocabulary: Vocabulary = PAPER):
     """A scene or room layout (JSON or YAML) as a validated Scene, as ``schema.load_scene``
     reads a file; model ids are those of ``models`` (a ``catalog.Catalog``, default the
-    procedural one)."""
+    procedural one), room types and categories those of ``vocabulary``."""
     from .schema import parse_room_layout, parse_scene, read_payload
     d = read_payload(data)
     if isinstance(d, dict) and 'room' not in d:
-        return parse_room_layout(d, models)
-    return parse_scene(d, models)
+        return parse_room_layout(d, models, vocabulary)
+    return parse_scene(d, models, vocabulary)
 
 
 # ---- workers ---------------------------------------------------------------------------------
@@ -400,7 +399,9 @@ class Worker:
             from .corpus.generate import first_shell
             scene = Scene(first_shell(job.room_type, job.shell_seed, job.index), [])
         else:
-            scene = scene_from_document(job.data, load_catalog(self.spec.synthesis.catalog))
+            vocabulary = self.synth.vocabulary
+            scene = scene_from_document(
+                job.data, load_catalog(self.spec.synthesis.catalog, vocabulary), vocabulary)
         furnish = self.synth.generate if self.spec.mode == 'generate' else self.synth.complete
         result = furnish(scene, job.seed)
         files.update(self.files(job.name, result.scene))
@@ -419,14 +420,15 @@ class Worker:
         so that a reader who finds a file finds what it names."""
         from . import export
         from .schema import dump_scene
-        models = load_catalog(self.spec.synthesis.catalog)
+        models = load_catalog(self.spec.synthesis.catalog, self.synth.vocabulary)
         shared, own = {}, {}
         with tempfile.TemporaryDirectory(prefix='scene-synth-batch-') as tmp:
             root = Path(tmp)
             if self.spec.png:
                 from .plot import save_png
                 (root / THUMBNAILS).mkdir()
-                save_png(scene, root / THUMBNAILS / f'{name}.png', title=name, **THUMBNAIL)
+                save_png(scene, root / THUMBNAILS / f'{name}.png', title=name,
+                         vocabulary=self.synth.vocabulary, **THUMBNAIL)
             for fmt in self.spec.exports:
                 export.write(scene, fmt, root / fmt / f'{name}{export.FORMATS[fmt].suffix}',
                              root / fmt / MESHES, catalog=models)
@@ -442,7 +444,8 @@ class Worker:
                     own[rel] = p.read_bytes()
             for rel in sorted(primary - {f'{SCENES}/{name}.json'}):
                 own[rel] = (root / rel).read_bytes()
-        own[f'{SCENES}/{name}.json'] = (dump_scene(scene, models) + '\n').encode('utf-8')
+        own[f'{SCENES}/{name}.json'] = (dump_scene(scene, models, self.synth.vocabulary)
+                                        + '\n').encode('utf-8')
         return {**shared, **own}
 
 
