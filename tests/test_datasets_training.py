@@ -118,6 +118,20 @@ def test_a_data_sets_vocabulary_knows_its_room_types_and_the_papers_does_not(dat
         catalog.get('kitchen__fridge_00')
 
 
+def test_a_data_sets_own_categories_are_known_where_its_vocabulary_is_passed(data):
+    from scene_synth_ros.categories import CATEGORIES
+    from scene_synth_ros.plot import UNKNOWN_COLOR, category_color
+    from scene_synth_ros.user_catalog.spec import category_of
+    vocabulary = PAPER.with_specs(room_type_specs(describe_dir(data)).values())
+    own = next(n for n in vocabulary.spec('kitchen').names if n not in CATEGORIES)
+    assert vocabulary.info(own) == vocabulary.spec('kitchen').info(own)
+    assert category_of(own.replace(' ', '_'), vocabulary) == own      # a user's catalog folder
+    assert category_of(own) is None
+    assert category_color(own, vocabulary) != UNKNOWN_COLOR == category_color(own)
+    with pytest.raises(KeyError):
+        PAPER.info(own)
+
+
 def test_trained_bundles_carry_their_category_set_and_furnish_rooms(data, kitchen_weights):
     from scene_synth_ros.geometry import check_scene
     from scene_synth_ros.networks.bundle import load_bundle
