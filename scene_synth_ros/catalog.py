@@ -3,9 +3,10 @@
 The procedural catalog (the default): variants span the category's size ranges on a Latin
 hypercube, so that small, large, low, tall, narrow and deep models all exist. Their
 dimensions are a pure function of the category's ranges (no randomness at run time), which
-keeps model ids stable across machines. A room type a data set defines
-(``categories.define_room_types``) has variants of its own categories, spanning the data's
-size ranges, with ids that name the room type (``kitchen__fridge_03``). Meshes are built
+keeps model ids stable across machines. A room type a data set's vocabulary defines
+(``categories.Vocabulary``) has variants of its own categories, spanning the data's size
+ranges, with ids that name the room type (``kitchen__fridge_03``); the functions that take
+a ``vocabulary`` know them (default: the paper's table alone). Meshes are built
 on demand by ``scene_synth_ros.meshes``. The module-level functions (``variants``, ``get``,
 ``nearest``, ``ranked``) are this catalog's.
 
@@ -23,14 +24,7 @@ import zlib
 
 import numpy as np
 
-from .categories import (
-    CATEGORIES,
-    CategoryInfo,
-    RoomTypeSpec,
-    defined_room_type,
-    room_spec,
-    room_types,
-)
+from .categories import CATEGORIES, PAPER, CategoryInfo, RoomTypeSpec, Vocabulary
 from .scene import Sized
 
 VARIANTS_PER_CATEGORY = 8
@@ -53,12 +47,14 @@ def slug(category: str) -> str:
 DATA_SET_MARK = '__'          # between the room type and the category in a data set's ids
 
 
-def variants(category: str, room_type: str | None = None) -> tuple[ModelVariant, ...]:
+def variants(category: str, room_type: str | None = None,
+             vocabulary: Vocabulary = PAPER) -> tuple[ModelVariant, ...]:
     """The catalog models of ``category``, from smallest to largest width: those of the
-    data set that defines ``room_type`` if one does, else the paper's category."""
-    if room_type is not None and defined_room_type(room_type):
-        spec = room_spec(room_type)
-        return _variants(spec.info(category), f'{slug(spec.room_type)}{DATA_SET_MARK}')
+    data set whose ``vocabulary`` defines ``room_type`` if it does, else the paper's
+    category."""
+    if room_type is not None and vocabulary.defines(room_type):
+        spec = vocabulary.spec(room_type)
+        return _variants(spec.info(category), _prefix(spec))
     return _variants(CATEGORIES[category], '')
 
 
@@ -86,23 +82,29 @@ def _by_id() -> dict[str, ModelVariant]:
     return {v.model_id: v for c in CATEGORIES for v in variants(c)}
 
 
-def get(model_id: str) -> ModelVariant:
+def get(model_id: str, vocabulary: Vocabulary = PAPER) -> ModelVariant:
+    """The model of ``model_id``: a paper category's, or one of a room type ``vocabulary``
+    defines. ``KeyError`` if neither has it."""
     try:
         return _by_id()[model_id]
     except KeyError:
         pass
-    for rt in room_types():
-        if defined_room_type(rt) and model_id.startswith(f'{slug(rt)}{DATA_SET_MARK}'):
-            v = _data_set_ids(room_spec(rt)).get(model_id)
+    for spec in vocabulary.specs:
+        if model_id.startswith(_prefix(spec)):
+            v = _data_set_ids(spec).get(model_id)
             if v is not None:
                 return v
     raise KeyError(f'unknown model id {model_id[:80]!r}')
 
 
+def _prefix(spec: RoomTypeSpec) -> str:
+    return f'{slug(spec.room_type)}{DATA_SET_MARK}'
+
+
 @lru_cache(maxsize=16)
 def _data_set_ids(spec: RoomTypeSpec) -> dict[str, ModelVariant]:
     """The variants of a data set's room type by id."""
-    return {v.model_id: v for name in spec.names for v in variants(name, spec.room_type)}
+    return {v.model_id: v for name in spec.names for v in _variants(spec.info(name), _prefix(spec))}
 
 
 def all_variants() -> list[ModelVariant]:
@@ -111,10 +113,10 @@ def all_variants() -> list[ModelVariant]:
 
 def nearest(category: str, width: float, depth: float,
             candidates: tuple[ModelVariant, ...] | None = None,
-            room_type: str | None = None) -> ModelVariant:
+            room_type: str | None = None, vocabulary: Vocabulary = PAPER) -> ModelVariant:
     """The variant whose footprint is closest to ``width`` x ``depth`` (relative error, so
     that a 5 cm miss counts more on a cup than on a bed)."""
-    pool = candidates if candidates is not None else variants(category, room_type)
+    pool = candidates if candidates is not None else variants(category, room_type, vocabulary)
     return min(pool, key=lambda v: footprint_distance(v, width, depth))
 
 
@@ -124,10 +126,11 @@ def footprint_distance(v: ModelVariant, width: float, depth: float) -> float:
 
 def ranked(category: str, width: float, depth: float,
            candidates: tuple[ModelVariant, ...] | None = None,
-           room_type: str | None = None) -> list[ModelVariant]:
+           room_type: str | None = None, vocabulary: Vocabulary = PAPER
+           ) -> list[ModelVariant]:
     """All variants of ``category`` (or ``candidates``) from the best footprint fit to the
     worst."""
-    pool = candidates if candidates is not None else variants(category, room_type)
+    pool = candidates if candidates is not None else variants(category, room_type, vocabulary)
     return sorted(pool, key=lambda v: footprint_distance(v, width, depth))
 
 
@@ -178,27 +181,28 @@ class Catalog:
         """Those of ``categories`` that no user model covers (procedural models there)."""
         return [c for c in categories if c not in self._by_category]
 
-    def variants(self, category: str, room_type: str | None = None
-                 ) -> tuple[ModelVariant, ...]:
-        return self._by_category.get(category) or variants(category, room_type)
+    def variants(self, category: str, room_type: str | None = None,
+                 vocabulary: Vocabulary = PAPER) -> tuple[ModelVariant, ...]:
+        return self._by_category.get(category) or variants(category, room_type, vocabulary)
 
     def user_model(self, model_id: str) -> UserModel | None:
         return self.user.get(model_id)
 
-    def get(self, model_id: str) -> ModelVariant:
+    def get(self, model_id: str, vocabulary: Vocabulary = PAPER) -> ModelVariant:
         """A user model by id, else a procedural one (objects placed before may keep them)."""
-        return self.user.get(model_id) or get(model_id)
+        return self.user.get(model_id) or get(model_id, vocabulary)
 
     def all_variants(self) -> list[ModelVariant]:
         return [v for c in CATEGORIES for v in self.variants(c)]
 
     def nearest(self, category: str, width: float, depth: float,
-                room_type: str | None = None) -> ModelVariant:
-        return nearest(category, width, depth, self.variants(category, room_type))
+                room_type: str | None = None, vocabulary: Vocabulary = PAPER) -> ModelVariant:
+        return nearest(category, width, depth, self.variants(category, room_type, vocabulary))
 
     def ranked(self, category: str, width: float, depth: float,
-               room_type: str | None = None) -> list[ModelVariant]:
-        return ranked(category, width, depth, self.variants(category, room_type))
+               room_type: str | None = None, vocabulary: Vocabulary = PAPER
+               ) -> list[ModelVariant]:
+        return ranked(category, width, depth, self.variants(category, room_type, vocabulary))
 
 
 PROCEDURAL = Catalog()

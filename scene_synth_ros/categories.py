@@ -11,11 +11,10 @@ object's front (local y), ``depth`` from back to front (local x, the front faces
 """
 from __future__ import annotations
 
-from contextlib import contextmanager
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
 import math
-from typing import Any, Iterable, Iterator
+from typing import Any, Iterable
 
 from .errors import RoomTypeConflict, UnknownRoomType
 
@@ -412,73 +411,94 @@ def _pair(v) -> tuple[float, float]:
 ROOM_TYPE_ALIASES = {'living room': 'living', 'livingroom': 'living', 'bed room': 'bedroom'}
 
 
-# Room types a data set defines (``define_room_types``): the category sets of the weights
-# in use when they were trained on imported data. A name here shadows the paper's type of
-# the same name; the paper's table stays the description of the embedded corpus.
-_DEFINED: dict[str, RoomTypeSpec] = {}
+@dataclass(frozen=True)
+class Vocabulary:
+    """The room types and categories one call knows: the paper's four, with the category
+    sets of the data set a model was trained on (``specs``) in place of, or beside, them.
+    Weights carry theirs (``networks.bundle.weights_vocabulary``), a data set its own
+    (``dataset.yaml``); ``PAPER`` knows the paper's table alone. The paper's table stays the
+    description of the embedded corpus whatever a vocabulary defines.
 
+    Immutable and hashable: a value passed to the parser, the catalog, the renderer and the
+    synthesizer, so that two models in one process know each their own room types."""
 
-def room_types() -> tuple[str, ...]:
-    """Every room type known in this process: the paper's four, then those defined."""
-    return ROOM_TYPES + tuple(rt for rt in _DEFINED if rt not in ROOM_TYPES)
+    # The data set's category sets, one per room type, in the order they were given; a spec
+    # equal to the paper's own is left out (it defines nothing).
+    specs: tuple[RoomTypeSpec, ...] = ()
 
+    @classmethod
+    def paper(cls) -> 'Vocabulary':
+        return cls()
 
-def resolve_room_type(name: str) -> str:
-    """Canonical room type for a user-given name ('living room' -> 'living')."""
-    key = name.strip().lower().replace('_', ' ')
-    key = ROOM_TYPE_ALIASES.get(key, key)
-    if key not in ROOM_TYPES and key not in _DEFINED:
-        known = room_types()
-        raise UnknownRoomType(f'unknown room type {name[:80]!r}; expected one of '
-                              f'{", ".join(known)}')
-    return key
+    def with_specs(self, specs: Iterable[RoomTypeSpec]) -> 'Vocabulary':
+        """This vocabulary with the category sets of ``specs`` as their room types' ones.
+        A spec equal to the paper's changes nothing; a type this vocabulary defines already
+        with another category set is refused (``RoomTypeConflict``): two data sets cannot
+        share a room type's name in one vocabulary."""
+        own = {s.room_type: s for s in self.specs}
+        added = []
+        for spec in specs:
+            current = own.get(spec.room_type)
+            if current is not None and current != spec:
+                raise RoomTypeConflict(f'room type {spec.room_type!r} is already defined by '
+                                       f'another data set; load the weights of one data set '
+                                       f'at a time')
+            if current is None and not (spec.room_type in ROOM_TYPES
+                                        and spec == paper_spec(spec.room_type)):
+                own[spec.room_type] = spec
+                added.append(spec)
+        return self if not added else Vocabulary(self.specs + tuple(added))
 
+    # Hashed once: a vocabulary keys caches that are asked at every insertion.
+    def __hash__(self) -> int:
+        return self._hash
 
-def room_spec(room_type: str) -> RoomTypeSpec:
-    """The category set of ``room_type``: a data set's where one is defined, else the
-    paper's table."""
-    room_type = resolve_room_type(room_type)
-    return _DEFINED.get(room_type) or paper_spec(room_type)
+    @cached_property
+    def _hash(self) -> int:
+        return hash(self.specs)
 
+    @cached_property
+    def _defined(self) -> dict[str, RoomTypeSpec]:
+        return {s.room_type: s for s in self.specs}
 
-def defined_room_type(room_type: str) -> bool:
-    """Whether a data set defines ``room_type``'s category set in this process."""
-    return room_type in _DEFINED
+    @cached_property
+    def room_types(self) -> tuple[str, ...]:
+        """Every room type known: the paper's four, then those the data set adds."""
+        return ROOM_TYPES + tuple(rt for rt in self._defined if rt not in ROOM_TYPES)
 
+    def resolve(self, name: str) -> str:
+        """Canonical room type for a user-given name ('living room' -> 'living')."""
+        key = name.strip().lower().replace('_', ' ')
+        key = ROOM_TYPE_ALIASES.get(key, key)
+        if key not in ROOM_TYPES and key not in self._defined:
+            raise UnknownRoomType(f'unknown room type {name[:80]!r}; expected one of '
+                                  f'{", ".join(self.room_types)}')
+        return key
 
-def define_room_types(specs: Iterable[RoomTypeSpec]) -> None:
-    """Make the category sets of ``specs`` (weights trained on a data set) the ones of
-    their room types in this process. A spec equal to the paper's changes nothing. A type
-    defined already with another category set is refused (``RoomTypeConflict``): two data
-    sets cannot share a room type's name in one process."""
-    specs = list(specs)
-    for spec in specs:                      # all checked before any is defined
-        current = _DEFINED.get(spec.room_type)
-        if current is not None and current != spec:
-            raise RoomTypeConflict(f'room type {spec.room_type!r} is already defined by '
-                                   f'another data set in this process; load the weights of '
-                                   f'one data set per process')
-    for spec in specs:
-        if spec.room_type in ROOM_TYPES and spec == paper_spec(spec.room_type):
-            continue
-        _DEFINED[spec.room_type] = spec
+    def spec(self, room_type: str) -> RoomTypeSpec:
+        """The category set of ``room_type``: the data set's where it defines one, else the
+        paper's table."""
+        room_type = self.resolve(room_type)
+        return self._defined.get(room_type) or paper_spec(room_type)
 
+    def defines(self, room_type: str) -> bool:
+        """Whether ``room_type``'s category set is a data set's rather than the paper's."""
+        return room_type in self._defined
 
-@contextmanager
-def room_types_defined(specs: Iterable[RoomTypeSpec], fresh: bool = False
-                       ) -> Iterator[None]:
-    """``define_room_types`` for the duration of a ``with`` block (with ``fresh``, on top of
-    the paper's types alone, as in a new process); the room types known before come back
-    after it."""
-    saved = dict(_DEFINED)
-    try:
-        if fresh:
-            _DEFINED.clear()
-        define_room_types(specs)
-        yield
-    finally:
-        _DEFINED.clear()
-        _DEFINED.update(saved)
+    def info(self, name: str, room_type: str | None = None) -> CategoryInfo:
+        """What is known of category ``name``: in ``room_type``'s category set when given
+        (a data set's categories live there), else in the paper's table, else in the data
+        set's types. ``KeyError`` if none has it."""
+        if room_type is not None:
+            spec = self.spec(room_type)
+            if name in spec:
+                return spec.info(name)
+        if name in CATEGORIES:
+            return CATEGORIES[name]
+        for spec in self.specs:
+            if name in spec:
+                return spec.info(name)
+        raise KeyError(name)
 
 
 @lru_cache(maxsize=None)
@@ -495,20 +515,19 @@ def paper_spec(room_type: str) -> RoomTypeSpec:
                         arch['door'] / rooms, arch['window'] / rooms)
 
 
-def category_info(name: str, room_type: str | None = None) -> CategoryInfo:
-    """What is known of category ``name``: in ``room_type``'s category set when given
-    (a data set's categories live there), else in the paper's table. ``KeyError`` if
-    neither has it."""
-    if room_type is not None:
-        spec = room_spec(room_type)
-        if name in spec:
-            return spec.info(name)
-    if name in CATEGORIES:
-        return CATEGORIES[name]
-    for spec in _DEFINED.values():
-        if name in spec:
-            return spec.info(name)
-    raise KeyError(name)
+PAPER = Vocabulary.paper()
+
+
+# ``PAPER``'s methods unless a ``vocabulary`` is given, for the code that knows the paper's
+# room types only (the corpus, the paper's evaluation).
+def resolve_room_type(name: str, vocabulary: Vocabulary = PAPER) -> str:
+    """Canonical room type for a user-given name ('living room' -> 'living')."""
+    return vocabulary.resolve(name)
+
+
+def room_spec(room_type: str, vocabulary: Vocabulary = PAPER) -> RoomTypeSpec:
+    """The category set of ``room_type`` in ``vocabulary`` (``Vocabulary.spec``)."""
+    return vocabulary.spec(room_type)
 
 
 def kl_divergence(p: dict[str, float], q: dict[str, float], eps: float = 1e-6) -> float:

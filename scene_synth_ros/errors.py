@@ -52,12 +52,13 @@ class SceneSynthError(Exception):
 
 
 class UnknownRoomType(SceneSynthError, ValueError):
-    """A room type that is not one of ``categories.ROOM_TYPES`` (nor an alias of one)."""
+    """A room type that the vocabulary in use does not know (``categories.Vocabulary``: the
+    paper's ``ROOM_TYPES`` and a data set's), nor an alias of one."""
 
 
 class RoomTypeConflict(SceneSynthError, ValueError):
-    """Weights whose room type has another category set than the one this process uses
-    (``categories.define_room_types``)."""
+    """A data set's category set for a room type that a vocabulary already has with another
+    one (``categories.Vocabulary.with_specs``)."""
 
 
 class UnknownCategory(SceneSynthError, ValueError):

@@ -23,6 +23,7 @@ import shapely
 
 from . import plot
 from .catalog import Catalog
+from .categories import PAPER, Vocabulary
 from .export import WALL_THICKNESS, wall_boxes
 from .meshes import file_uri, mesh_scale, package_uri, shipped_variant, user_marker
 from .scene import Opening, PlacedObject, Room, Scene
@@ -74,9 +75,9 @@ class MarkerSpec:
         set_(self, 'points', tuple(_floats(p, 3, 'point') for p in self.points))
 
 
-def category_color(category: str) -> RGBA:
+def category_color(category: str, vocabulary: Vocabulary = PAPER) -> RGBA:
     """The RGBA colour of a category, the same as in the top-down pictures."""
-    return _floats(plot.category_color(category), 4, 'color')
+    return _floats(plot.category_color(category, vocabulary), 4, 'color')
 
 
 FLOOR_RGBA = _floats(to_rgba(plot.FLOOR_COLOR), 4, 'color')
@@ -110,30 +111,33 @@ def _opening_marker(room: Room, op: Opening, ns: str, k: int, color: RGBA) -> Ma
 
 
 def _object_marker(obj: PlacedObject, k: int, style: str,
-                   models: Catalog | None = None) -> MarkerSpec:
+                   models: Catalog | None = None, vocabulary: Vocabulary = PAPER
+                   ) -> MarkerSpec:
     x, y, z = obj.position
+    color = category_color(obj.category, vocabulary)
     user = user_marker(obj, models) if style == 'mesh' else None
     if user is not None:
         # The STL is in the object frame at the model's size, like the shipped meshes.
         return MarkerSpec(obj.category, k, 'mesh', (x, y, z), obj.yaw, mesh_scale(obj, user),
-                          category_color(obj.category), mesh_resource=file_uri(user.marker),
+                          color, mesh_resource=file_uri(user.marker),
                           mesh_materials=False)
     variant = shipped_variant(obj) if style == 'mesh' else None
     if variant is None:   # cube style, or a category without any mesh: a box
         return MarkerSpec(obj.category, k, 'cube', (x, y, z + obj.height / 2), obj.yaw,
-                          (obj.depth, obj.width, obj.height), category_color(obj.category))
+                          (obj.depth, obj.width, obj.height), color)
     # Catalog meshes have their origin at the bottom centre, so the pose is the base; the
     # scale (in the mesh's axes: depth, width, height) stretches the model onto the object.
     return MarkerSpec(obj.category, k, 'mesh', (x, y, z), obj.yaw, mesh_scale(obj, variant),
-                      category_color(obj.category), mesh_resource=package_uri(variant.model_id))
+                      color, mesh_resource=package_uri(variant.model_id))
 
 
-def scene_markers(scene: Scene, style: str = 'cube',
-                  catalog: Catalog | None = None) -> list[MarkerSpec]:
+def scene_markers(scene: Scene, style: str = 'cube', catalog: Catalog | None = None,
+                  vocabulary: Vocabulary = PAPER) -> list[MarkerSpec]:
     """The markers of a room and its objects: floor, walls, doors, windows, one marker per
     object (a box, or with ``style='mesh'`` its catalog mesh shipped in the package, as a
     ``package://`` URI that RViz resolves on any machine with the package, or the user's mesh
-    of ``catalog`` as a ``file://`` URI) and one label per object."""
+    of ``catalog`` as a ``file://`` URI) and one label per object. Colours are those of the
+    categories of ``vocabulary``."""
     if style not in MARKER_STYLES:
         raise ValueError(f'unknown marker style {style!r}; use one of '
                          f'{", ".join(MARKER_STYLES)}')
@@ -147,7 +151,7 @@ def scene_markers(scene: Scene, style: str = 'cube',
     seen: dict[str, int] = {}
     for obj in scene.objects:
         k = seen[obj.category] = seen.get(obj.category, -1) + 1
-        out.append(_object_marker(obj, k, style, catalog))
+        out.append(_object_marker(obj, k, style, catalog, vocabulary))
     out += [MarkerSpec('labels', i, 'text', (o.position[0], o.position[1], o.top + LABEL_HEIGHT),
                        0.0, (0.0, 0.0, LABEL_HEIGHT), LABEL_RGBA, text=f'{o.id}')
             for i, o in enumerate(scene.objects)]

@@ -205,7 +205,8 @@ class SceneSynthNode(Node):
         clear = Marker(action=Marker.DELETEALL)
         clear.header.frame_id, clear.header.stamp = cfg.frame_id, stamp
         array.markers.append(clear)
-        for spec in scene_markers(served.scene, cfg.marker_style, served.catalog):
+        for spec in scene_markers(served.scene, cfg.marker_style, served.catalog,
+                                  served.vocabulary):
             m = Marker(ns=spec.ns, id=spec.id, type=_KINDS[spec.kind], action=Marker.ADD)
             m.header.frame_id, m.header.stamp = cfg.frame_id, stamp
             m.pose = _pose(spec.position, spec.yaw)

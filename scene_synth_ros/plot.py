@@ -10,7 +10,8 @@ Colours are a fixed function of the category: ``category_color(name)`` walks the
 of ``categories.CATEGORIES`` in their order over a palette made of matplotlib's tab20, tab20b
 and tab20c (greys left out so that no object looks like floor or wall), so a category has the
 same colour in every picture. A category of an imported data set that the paper's table
-lacks takes the palette entry its name's CRC-32 picks: fixed too, on every machine.
+lacks (one the ``vocabulary`` passed in knows) takes the palette entry its name's CRC-32
+picks: fixed too, on every machine.
 
 Figures are made with ``matplotlib.figure.Figure`` directly (never pyplot), which renders with
 the Agg backend and touches no global matplotlib state.
@@ -30,7 +31,7 @@ from matplotlib.patches import Arc, Patch
 from matplotlib.patches import Polygon as PolygonPatch
 import numpy as np
 
-from .categories import CATEGORIES, category_info
+from .categories import CATEGORIES, PAPER, Vocabulary
 from .scene import Room, Scene
 
 FLOOR_COLOR = '#e4e4e4'
@@ -65,14 +66,15 @@ def category_colors() -> dict[str, tuple[float, float, float, float]]:
     return {name: pal[k % len(pal)] for k, name in enumerate(CATEGORIES)}
 
 
-def category_color(category: str) -> tuple[float, float, float, float]:
-    """RGBA colour of ``category`` (by its name's CRC-32 for a data set's own category;
-    grey for a name that is no category at all)."""
+def category_color(category: str, vocabulary: Vocabulary = PAPER
+                   ) -> tuple[float, float, float, float]:
+    """RGBA colour of ``category`` (by its name's CRC-32 for a data set's own category, one
+    of ``vocabulary``; grey for a name that is no category at all)."""
     known = category_colors().get(category)
     if known is not None:
         return known
     try:
-        category_info(category)
+        vocabulary.info(category)
     except KeyError:
         return UNKNOWN_COLOR
     pal = _palette()
@@ -132,9 +134,10 @@ def _front_triangle(o) -> np.ndarray:
 
 
 def draw_scene(scene: Scene, ax=None, legend: bool = True, title: str | None = None,
-               scale_bar: bool = True):
+               scale_bar: bool = True, vocabulary: Vocabulary = PAPER):
     """Draw ``scene`` on ``ax`` (a new figure of ``DEFAULT_FIGSIZE`` if None) and return the
-    axes. ``title=None`` writes the room type and object count; ``''`` writes none."""
+    axes. ``title=None`` writes the room type and object count; ``''`` writes none. The
+    scene's categories are those of ``vocabulary``."""
     if ax is None:
         fig = Figure(figsize=DEFAULT_FIGSIZE, dpi=DEFAULT_DPI)
         ax = fig.add_axes((0.08, 0.08, 0.6, 0.84) if legend else (0.1, 0.08, 0.85, 0.84))
@@ -146,7 +149,7 @@ def draw_scene(scene: Scene, ax=None, legend: bool = True, title: str | None = N
         group = [o for o in objs if (o.support is not None) == tier]
         if not group:
             continue
-        faces = [category_color(o.category) for o in group]
+        faces = [category_color(o.category, vocabulary) for o in group]
         edges = [_darker(c, 0.25 if tier else 0.6) for c in faces]
         ax.add_collection(PolyCollection([o.corners() for o in group], facecolors=faces,
                                          edgecolors=edges, linewidths=lw, zorder=zorder))
@@ -172,7 +175,7 @@ def draw_scene(scene: Scene, ax=None, legend: bool = True, title: str | None = N
                                       borderpad=0.3, sep=2, frameon=False, size_vertical=0.03,
                                       fontproperties={'size': 7}))
     if legend:
-        handles = _legend_handles(_present_categories([scene]))
+        handles = _legend_handles(_present_categories([scene]), vocabulary)
         if handles:
             ax.legend(handles=handles, loc='upper left', bbox_to_anchor=(1.02, 1.0),
                       fontsize=7, frameon=False, borderaxespad=0.0)
@@ -186,26 +189,28 @@ def _present_categories(scenes: Sequence[Scene]) -> list[str]:
     return sorted(seen, key=lambda c: (order.get(c, len(order)), c))
 
 
-def _legend_handles(categories: Sequence[str]) -> list[Patch]:
-    return [Patch(facecolor=category_color(c), edgecolor=_darker(category_color(c), 0.6),
-                  label=c) for c in categories]
+def _legend_handles(categories: Sequence[str], vocabulary: Vocabulary = PAPER
+                    ) -> list[Patch]:
+    colors = {c: category_color(c, vocabulary) for c in categories}
+    return [Patch(facecolor=colors[c], edgecolor=_darker(colors[c], 0.6), label=c)
+            for c in categories]
 
 
 def save_png(scene: Scene, path: str | os.PathLike, dpi: int = DEFAULT_DPI,
              figsize: tuple[float, float] = DEFAULT_FIGSIZE, legend: bool = True,
-             title: str | None = None) -> str:
+             title: str | None = None, vocabulary: Vocabulary = PAPER) -> str:
     """Write a picture of ``scene`` to ``path`` (PNG of exactly ``figsize * dpi`` pixels) and
     return the path."""
     fig = Figure(figsize=figsize, dpi=dpi)
     ax = fig.add_axes((0.08, 0.08, 0.6, 0.84) if legend else (0.1, 0.08, 0.85, 0.84))
-    draw_scene(scene, ax=ax, legend=legend, title=title)
+    draw_scene(scene, ax=ax, legend=legend, title=title, vocabulary=vocabulary)
     fig.savefig(path, dpi=dpi, format='png')
     return os.fspath(path)
 
 
 def save_grid(scenes: Sequence[Scene], path: str | os.PathLike, ncols: int = 3,
               titles: Sequence[str] | None = None, dpi: int = DEFAULT_DPI,
-              cell: float = 3.6, legend: bool = True) -> str:
+              cell: float = 3.6, legend: bool = True, vocabulary: Vocabulary = PAPER) -> str:
     """A gallery: the scenes on a grid of ``ncols`` columns (``cell`` inches per picture),
     with one legend of every category present at the right. Returns the path."""
     scenes = list(scenes)
@@ -226,9 +231,9 @@ def save_grid(scenes: Sequence[Scene], path: str | os.PathLike, ncols: int = 3,
             ax.set_axis_off()
             continue
         draw_scene(scenes[k], ax=ax, legend=False,
-                   title=None if titles is None else titles[k])
+                   title=None if titles is None else titles[k], vocabulary=vocabulary)
     if legend:
-        handles = _legend_handles(_present_categories(scenes))
+        handles = _legend_handles(_present_categories(scenes), vocabulary)
         if handles:
             fig.legend(handles=handles, loc='upper right', fontsize=7, frameon=False)
     fig.savefig(path, dpi=dpi, format='png')
@@ -239,7 +244,8 @@ REACHED_COLOR = (0.2, 0.7, 0.3, 0.35)
 UNREACHED_COLOR = '#d62728'
 
 
-def save_reach_png(scene: Scene, robot, path: str | os.PathLike, dpi: int = DEFAULT_DPI) -> str:
+def save_reach_png(scene: Scene, robot, path: str | os.PathLike, dpi: int = DEFAULT_DPI,
+                   vocabulary: Vocabulary = PAPER) -> str:
     """The robot promise drawn (``robot.report``): the floor the robot's body drives over
     from the doors in green, the objects it cannot reach outlined in red, the verdict as the
     title."""
@@ -254,7 +260,7 @@ def save_reach_png(scene: Scene, robot, path: str | os.PathLike, dpi: int = DEFA
     else:
         title = (f'{100 * found.reachable_floor:.0f} % of the free floor reachable for a '
                  f'{2 * robot.radius:g} m robot' + ('' if found.kept else ': promise broken'))
-    draw_scene(scene, ax=ax, title=title)
+    draw_scene(scene, ax=ax, title=title, vocabulary=vocabulary)
     pieces = [np.asarray(p.exterior.coords) for p in get_parts(driven_floor(scene, robot))
               if p.geom_type == 'Polygon']
     ax.add_collection(PolyCollection(pieces, facecolors=REACHED_COLOR, edgecolors='none',

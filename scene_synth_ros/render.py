@@ -60,7 +60,7 @@ from typing import Iterable
 
 import numpy as np
 
-from .categories import resolve_room_type, room_spec
+from .categories import PAPER, Vocabulary
 from .errors import SceneSynthError, number, with_article
 from .scene import Room, Scene
 
@@ -84,31 +84,33 @@ FIT_TOLERANCE = 1e-6      # metres a room may exceed its square by (rounding of 
 DEFAULT_RESOLUTION = 64
 
 
-def num_channels(room_type: str) -> int:
+# A room type's categories, and so its images' channels, are those of a vocabulary: the
+# paper's unless a data set's is given (``categories.Vocabulary``).
+def num_channels(room_type: str, vocabulary: Vocabulary = PAPER) -> int:
     """Number of channels of an image of ``room_type``."""
-    return FIRST_CATEGORY + len(room_spec(room_type).names)
+    return FIRST_CATEGORY + len(vocabulary.spec(room_type).names)
 
 
-def channel_names(room_type: str) -> tuple[str, ...]:
+def channel_names(room_type: str, vocabulary: Vocabulary = PAPER) -> tuple[str, ...]:
     """Names of the channels of an image of ``room_type``, in order."""
-    return FIXED_CHANNEL_NAMES + room_spec(room_type).names
+    return FIXED_CHANNEL_NAMES + vocabulary.spec(room_type).names
 
 
-def _category_channels(room_type: str) -> dict[str, int]:
-    return _channels_of(room_spec(room_type).names)
+def _category_channels(room_type: str, vocabulary: Vocabulary = PAPER) -> dict[str, int]:
+    return _channels_of(vocabulary.spec(room_type).names)
 
 
 @lru_cache(maxsize=64)
 def _channels_of(names: tuple[str, ...]) -> dict[str, int]:
-    # Keyed by the category list, not the room type's name: a data set may define a type
-    # of the same name with other categories (categories.define_room_types).
+    # Keyed by the category list, not the room type's name: a data set's vocabulary may
+    # have a type of the same name with other categories (categories.Vocabulary).
     return {name: FIRST_CATEGORY + k for k, name in enumerate(names)}
 
 
-def category_channel(room_type: str, category: str) -> int:
+def category_channel(room_type: str, category: str, vocabulary: Vocabulary = PAPER) -> int:
     """Channel index of ``category`` in images of ``room_type``."""
     try:
-        return _category_channels(room_type)[category]
+        return _category_channels(room_type, vocabulary)[category]
     except KeyError:
         raise ValueError(f'category {category!r} is not one of the {room_type} categories') \
             from None
@@ -142,11 +144,11 @@ class RoomFrameBox:
         return max(self.span) <= self.cap + FIT_TOLERANCE
 
 
-def room_frame_box(room: Room) -> RoomFrameBox:
+def room_frame_box(room: Room, vocabulary: Vocabulary = PAPER) -> RoomFrameBox:
     """The room measured in its frame's axes (see the module docstring)."""
-    rt = resolve_room_type(room.room_type)
+    rt = vocabulary.resolve(room.room_type)
     yaw = room_axis_yaw(room)
-    cap = room_spec(rt).size_cap
+    cap = vocabulary.spec(rt).size_cap
     axes = Frame((0.0, 0.0), yaw, cap, 1)     # the room's axes through the origin
     uv = axes.to_local(np.asarray(room.floor, dtype=float))
     lo, hi = uv.min(axis=0), uv.max(axis=0)
@@ -190,22 +192,24 @@ class Frame:
         return self.extent / self.resolution
 
     @classmethod
-    def for_room(cls, room: Room, resolution: int = DEFAULT_RESOLUTION) -> 'Frame':
+    def for_room(cls, room: Room, resolution: int = DEFAULT_RESOLUTION,
+                 vocabulary: Vocabulary = PAPER) -> 'Frame':
         """The room's frame (see the module docstring); ``RoomDoesNotFit`` if the room is
         larger than its type's square in its own axes."""
-        box = room_frame_box(room)
+        box = room_frame_box(room, vocabulary)
         if not box.fits:
             raise RoomDoesNotFit(box)
         return cls(box.centre, box.yaw, box.cap, resolution)
 
     @classmethod
     def local(cls, room_type: str, point: Iterable[float], yaw: float,
-              resolution: int = DEFAULT_RESOLUTION) -> 'Frame':
+              resolution: int = DEFAULT_RESOLUTION, vocabulary: Vocabulary = PAPER
+              ) -> 'Frame':
         """A view of the same scale as the global one, centred at ``point`` (x, y; a z is
         ignored) and rotated by ``yaw``: in it, world direction ``yaw`` is the image's +u
         (column) axis."""
         p = tuple(point)
-        return cls((p[0], p[1]), yaw, room_spec(room_type).size_cap, resolution)
+        return cls((p[0], p[1]), yaw, vocabulary.spec(room_type).size_cap, resolution)
 
     # World <-> frame-local metres.
     def to_local(self, xy) -> np.ndarray:
@@ -455,10 +459,13 @@ class TopDownRenderer:
 
     The architecture layers are cached per (room, frame) in a small LRU keyed on the room's
     content (type, floor, doors, windows) and the frame, so furnishing a room object by
-    object re-rasterises only the objects."""
+    object re-rasterises only the objects. A scene's categories are those its room type has
+    in ``vocabulary`` (default: the paper's table)."""
 
-    def __init__(self, resolution: int = DEFAULT_RESOLUTION, cache_size: int = 32):
+    def __init__(self, resolution: int = DEFAULT_RESOLUTION, cache_size: int = 32,
+                 vocabulary: Vocabulary = PAPER):
         self.resolution = int(resolution)
+        self.vocabulary = vocabulary
         self._static = _LRU(cache_size)
         self._rooms = _LRU(max(8, cache_size))
 
@@ -467,7 +474,7 @@ class TopDownRenderer:
         self._rooms.clear()
 
     def num_channels(self, room_type: str) -> int:
-        return num_channels(room_type)
+        return num_channels(room_type, self.vocabulary)
 
     def static_layers(self, room: Room, frame: Frame, keep: bool = True) -> np.ndarray:
         """Cached (4, N, N) room, wall, door, window masks. Do not modify the result.
@@ -495,8 +502,8 @@ class TopDownRenderer:
         frame's architecture layers are cached (``static_layers``)."""
         room = scene.room
         if frame is None:
-            frame = Frame.for_room(room, self.resolution)
-        channels = _category_channels(resolve_room_type(room.room_type))
+            frame = Frame.for_room(room, self.resolution, self.vocabulary)
+        channels = _category_channels(room.room_type, self.vocabulary)
         objs = sorted(scene.objects, key=lambda o: o.top)
         chans = []
         for o in objs:
@@ -539,4 +546,4 @@ class TopDownRenderer:
         """The image of ``scene`` in ``Frame.local(room_type, point, yaw)``: what the
         orientation and dimension modules see for an object placed at ``point``."""
         return self.render(scene, Frame.local(scene.room.room_type, point, yaw,
-                                              self.resolution))
+                                              self.resolution, self.vocabulary))

@@ -35,13 +35,7 @@ import numpy as np
 import shapely
 
 from . import catalog
-from .categories import (
-    CATEGORIES,
-    RoomTypeSpec,
-    resolve_room_type,
-    room_spec,
-    room_types,
-)
+from .categories import CATEGORIES, PAPER, RoomTypeSpec, Vocabulary
 from .errors import SceneSynthError, UnknownRoomType, number, quoted, with_article
 from .files import write_atomic
 from .limits import LimitExceeded, YamlError, check_tree, join, loads, loads_yaml
@@ -290,13 +284,14 @@ def _check_schema(d: Any, key: str, prefix: str = '') -> None:
 
 # ----------------------------------------------------------------------------- room checks
 
-def _room_type(value: str, path: str) -> str:
+def _room_type(value: str, path: str, vocabulary: Vocabulary) -> str:
     try:
-        return resolve_room_type(value)
+        return vocabulary.resolve(value)
     except UnknownRoomType:
         raise SceneValidationError(
             f'{path} {quoted(value)} is not a known room type (expected one of '
-            f'{", ".join(room_types())}, or an alias such as \'living room\')', path) from None
+            f'{", ".join(vocabulary.room_types)}, or an alias such as \'living room\')',
+            path) from None
 
 
 def _check_floor(points: list[list[float]], prefix: str) -> list[tuple[float, float]]:
@@ -347,10 +342,10 @@ def _check_floor(points: list[list[float]], prefix: str) -> list[tuple[float, fl
     return pts
 
 
-def _check_fits(room: Room, prefix: str) -> None:
+def _check_fits(room: Room, prefix: str, vocabulary: Vocabulary) -> None:
     """The room must fit its type's square in its own axes: the question the networks'
     frame asks (``render.room_frame_box``), so every room accepted here can be furnished."""
-    box = room_frame_box(room)
+    box = room_frame_box(room, vocabulary)
     if not box.fits:
         path = _join(prefix, 'floor')
         raise SceneValidationError(str(RoomDoesNotFit(box, path)), path)
@@ -398,14 +393,14 @@ def _check_openings(room: Room, prefix: str) -> None:
         placed.append((path, wall.index, lo, hi))
 
 
-def _build_room(d: dict[str, Any], prefix: str) -> Room:
+def _build_room(d: dict[str, Any], prefix: str, vocabulary: Vocabulary) -> Room:
     """The Room of an (already schema-valid) room dict, after the geometric checks."""
-    room_type = _room_type(d['room_type'], _join(prefix, 'room_type'))
+    room_type = _room_type(d['room_type'], _join(prefix, 'room_type'), vocabulary)
     room = Room(room_type, ccw(_check_floor(d['floor'], prefix)),
                 float(d.get('wall_height', DEFAULT_WALL_HEIGHT)),
                 tuple(Opening.from_dict('door', o) for o in d.get('doors', [])),
                 tuple(Opening.from_dict('window', o) for o in d.get('windows', [])))
-    _check_fits(room, prefix)
+    _check_fits(room, prefix, vocabulary)
     _check_openings(room, prefix)
     return room
 
@@ -417,15 +412,15 @@ def _range(lo: float, hi: float) -> str:
 
 
 def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str,
-                   models: catalog.Catalog | None = None) -> list[PlacedObject]:
+                   models: catalog.Catalog | None, vocabulary: Vocabulary) -> list[PlacedObject]:
     """PlacedObjects of (already schema-valid) object dicts, checked against the room;
     missing ids and model ids (from ``models``, default the procedural catalog) are filled
     in."""
     models = catalog.PROCEDURAL if models is None else models
-    spec = room_spec(room.room_type)
+    spec = vocabulary.spec(room.room_type)
     seen: dict[str, int] = {}
     for i, d in enumerate(items):
-        _check_object(d, _join(prefix, i), room, spec, models)
+        _check_object(d, _join(prefix, i), room, spec, models, vocabulary)
         if d.get('id') is not None:
             ipath = _join(_join(prefix, i), 'id')
             if d['id'] in seen:
@@ -441,7 +436,8 @@ def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str,
         size = tuple(float(v) for v in d['size'])
         model_id = d.get('model_id')
         if model_id is None:
-            model_id = models.nearest(d['category'], size[0], size[1], spec.room_type).model_id
+            model_id = models.nearest(d['category'], size[0], size[1], spec.room_type,
+                                      vocabulary).model_id
         objects.append(PlacedObject(str(d['id']), d['category'], model_id,
                                     tuple(float(v) for v in d['position']), float(d['yaw']),
                                     size, d.get('support')))
@@ -449,7 +445,8 @@ def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str,
 
 
 def _check_object(d: dict[str, Any], path: str, room: Room, spec: RoomTypeSpec,
-                  models: catalog.Catalog = catalog.PROCEDURAL) -> None:
+                  models: catalog.Catalog = catalog.PROCEDURAL,
+                  vocabulary: Vocabulary = PAPER) -> None:
     """One object dict's category, size, position and model id against the room."""
     category = d['category']
     cpath = _join(path, 'category')
@@ -485,7 +482,7 @@ def _check_object(d: dict[str, Any], path: str, room: Room, spec: RoomTypeSpec,
     if d.get('model_id') is not None:
         mpath = _join(path, 'model_id')
         try:
-            model = models.get(d['model_id'])
+            model = models.get(d['model_id'], vocabulary)
         except KeyError:
             raise SceneValidationError(
                 f'{mpath} {quoted(d["model_id"])} is not a catalog model id', mpath) from None
@@ -544,32 +541,35 @@ def _fill_ids(items: list[dict[str, Any]], room: Room) -> list[dict[str, Any]]:
 
 # ----------------------------------------------------------------------------- public API
 
-def validate_layout_dict(d: Any) -> None:
+def validate_layout_dict(d: Any, vocabulary: Vocabulary = PAPER) -> None:
     """Raise SceneValidationError unless ``d`` is a valid room layout (objects optional)."""
-    _layout_to_scene(_tree(d))
+    _layout_to_scene(_tree(d), vocabulary=vocabulary)
 
 
-def validate_scene_dict(d: Any) -> None:
+def validate_scene_dict(d: Any, vocabulary: Vocabulary = PAPER) -> None:
     """Raise SceneValidationError unless ``d`` is a valid scene dict."""
-    _scene_from_dict(_tree(d))
+    _scene_from_dict(_tree(d), vocabulary=vocabulary)
 
 
-def _layout_to_scene(d: Any, models: catalog.Catalog | None = None) -> Scene:
+def _layout_to_scene(d: Any, models: catalog.Catalog | None = None,
+                     vocabulary: Vocabulary = PAPER) -> Scene:
     _check_schema(d, 'room_layout')
-    room = _build_room(d, '')
+    room = _build_room(d, '', vocabulary)
     items = d.get('objects', [])
-    objects = _build_objects(items, room, 'objects', models)
+    objects = _build_objects(items, room, 'objects', models, vocabulary)
     return Scene(room, objects, {'request_id': d['request_id']} if 'request_id' in d else {})
 
 
-def _scene_from_dict(d: Any, models: catalog.Catalog | None = None) -> Scene:
+def _scene_from_dict(d: Any, models: catalog.Catalog | None = None,
+                     vocabulary: Vocabulary = PAPER) -> Scene:
     _check_schema(d, 'scene')
-    room = _build_room(d['room'], 'room')
-    objects = _build_objects(d.get('objects', []), room, 'objects', models)
+    room = _build_room(d['room'], 'room', vocabulary)
+    objects = _build_objects(d.get('objects', []), room, 'objects', models, vocabulary)
     return Scene(room, objects, dict(d.get('meta', {})))
 
 
-def parse_room_layout(text_or_dict: Any, catalog: catalog.Catalog | None = None) -> Scene:
+def parse_room_layout(text_or_dict: Any, catalog: catalog.Catalog | None = None,
+                      vocabulary: Vocabulary = PAPER) -> Scene:
     """A room layout (JSON or YAML text, bytes or dict), possibly with objects, as a
     validated Scene.
 
@@ -577,11 +577,13 @@ def parse_room_layout(text_or_dict: Any, catalog: catalog.Catalog | None = None)
     ``catalog.nearest``; the room type becomes its canonical name. The scene's meta holds
     the layout's ``request_id``, if it has one, and nothing else. Model ids are those of
     ``catalog`` (a user catalog, ``catalog.Catalog``; default: the procedural one), here and
-    in every reader and writer below.
+    in every reader and writer below. The room types and categories known are those of
+    ``vocabulary`` (default: the paper's; a synthesizer's are ``Synthesizer.vocabulary``),
+    here and below too.
     """
     d = _load(text_or_dict, yaml_ok=True)
     try:
-        return _layout_to_scene(d, catalog)
+        return _layout_to_scene(d, catalog, vocabulary)
     except SceneValidationError as e:
         if looks_like_python_dict(text_or_dict):
             raise SceneValidationError(f'{e}; {PYTHON_DICT_HINT}', e.path) from None
@@ -594,27 +596,30 @@ def read_payload(text_or_dict: Any) -> Any:
     return _load(text_or_dict, yaml_ok=True)
 
 
-def parse_scene(text_or_dict: Any, catalog: catalog.Catalog | None = None) -> Scene:
+def parse_scene(text_or_dict: Any, catalog: catalog.Catalog | None = None,
+                vocabulary: Vocabulary = PAPER) -> Scene:
     """A scene (JSON text, bytes or dict, as written by ``dump_scene``) as a validated Scene."""
-    return _scene_from_dict(_load(text_or_dict), catalog)
+    return _scene_from_dict(_load(text_or_dict), catalog, vocabulary)
 
 
-def load_scene(path: str | os.PathLike, catalog: catalog.Catalog | None = None) -> Scene:
+def load_scene(path: str | os.PathLike, catalog: catalog.Catalog | None = None,
+               vocabulary: Vocabulary = PAPER) -> Scene:
     """Read a scene file; a file whose top level has no ``"room"`` is read as a room layout.
 
     I/O errors (a missing file, ...) propagate as OSError.
     """
     d = _load(Path(path).read_text(encoding='utf-8'), yaml_ok=True)
     if isinstance(d, dict) and 'room' not in d:
-        return _layout_to_scene(d, catalog)
-    return _scene_from_dict(d, catalog)
+        return _layout_to_scene(d, catalog, vocabulary)
+    return _scene_from_dict(d, catalog, vocabulary)
 
 
-def dump_scene(scene: Scene, catalog: catalog.Catalog | None = None) -> str:
+def dump_scene(scene: Scene, catalog: catalog.Catalog | None = None,
+               vocabulary: Vocabulary = PAPER) -> str:
     """The scene as JSON text, validated first (an invalid scene raises
     SceneValidationError, so nothing invalid is ever written)."""
     d = _tree(scene.to_dict())
-    _scene_from_dict(d, catalog)
+    _scene_from_dict(d, catalog, vocabulary)
     try:
         return _format(d)
     except (TypeError, ValueError) as e:
@@ -644,10 +649,10 @@ def _has_dict(value: Any) -> bool:
 
 
 def save_scene(scene: Scene, path: str | os.PathLike,
-               catalog: catalog.Catalog | None = None) -> None:
+               catalog: catalog.Catalog | None = None, vocabulary: Vocabulary = PAPER) -> None:
     """Validate ``scene`` and write it as JSON to ``path`` (via a temporary file, so a failed
     write never leaves a half-written scene behind)."""
-    write_atomic(path, dump_scene(scene, catalog) + '\n')
+    write_atomic(path, dump_scene(scene, catalog, vocabulary) + '\n')
 
 
 # What the importers of other data sets (``datasets``) reuse for scenes whose categories are

@@ -26,13 +26,7 @@ from typing import Any, Callable
 import yaml
 
 from .catalog import PROCEDURAL, Catalog
-from .categories import (
-    ROOM_TYPE_ALIASES,
-    ROOM_TYPES,
-    category_info,
-    resolve_room_type,
-    room_types,
-)
+from .categories import PAPER, ROOM_TYPE_ALIASES, ROOM_TYPES, Vocabulary
 from .errors import (
     CatalogError,
     ConfigError,
@@ -171,9 +165,10 @@ def _check_weights_hold(config: ServerConfig, synth: Synthesizer) -> None:
                           f'{", ".join(synth.room_types) or "none"}')
 
 
-def load_catalog_dir(value: str) -> Catalog:
+def load_catalog_dir(value: str, vocabulary: Vocabulary = PAPER) -> Catalog:
     """The catalog the parameter ``catalog_dir`` names: the procedural one for '', else the
-    ``catalog.json`` in that folder (or the file itself); ConfigError saying what is wrong."""
+    ``catalog.json`` in that folder (or the file itself), of the categories of
+    ``vocabulary``; ConfigError saying what is wrong."""
     if not value:
         return PROCEDURAL
     path = Path(value).expanduser()
@@ -185,27 +180,28 @@ def load_catalog_dir(value: str) -> Catalog:
     elif not path.exists():
         raise ConfigError(f'catalog_dir {quoted(value)} does not exist')
     try:
-        return load_catalog(path)
+        return load_catalog(path, vocabulary)
     except CatalogError as e:
         raise ConfigError(f'catalog_dir {quoted(value)} cannot be used: {e}') from None
 
 
-def check(name: str, value: Any) -> Any:
-    """``value`` for parameter ``name``, normalised, or ConfigError saying why not."""
+def check(name: str, value: Any, vocabulary: Vocabulary = PAPER) -> Any:
+    """``value`` for parameter ``name``, normalised, or ConfigError saying why not; a room
+    type or category is one of ``vocabulary`` (the weights' in use, ``BY_WEIGHTS``)."""
     if name not in _SETTINGS:
         raise ConfigError(f'{name} is not a parameter of scene_synth_node')
     value = check_value(name, value, _SETTINGS[name][0])
-    return _check_text(name, value) if isinstance(value, str) else value
+    return _check_text(name, value, vocabulary) if isinstance(value, str) else value
 
 
-def _check_text(name: str, value: str) -> str:
+def _check_text(name: str, value: str, vocabulary: Vocabulary = PAPER) -> str:
     """What a string parameter must be beyond its choices."""
     if name == 'room_type':
         try:
-            return resolve_room_type(value)
+            return vocabulary.resolve(value)
         except UnknownRoomType:
             raise ConfigError(f'room_type {quoted(value)} is not one of '
-                              f'{", ".join(room_types())}') from None
+                              f'{", ".join(vocabulary.room_types)}') from None
     if name == 'device':
         try:
             resolve_device(value)
@@ -214,7 +210,7 @@ def _check_text(name: str, value: str) -> str:
     if name == 'next_category' and value:
         value = ' '.join(value.replace('_', ' ').lower().split())     # office_chair too
         try:
-            category_info(value)
+            vocabulary.info(value)
         except KeyError:
             raise ConfigError(f'next_category {quoted(value)} is not a category '
                               f'(`scene-synth catalog list` shows them)') from None
@@ -226,14 +222,14 @@ def _check_text(name: str, value: str) -> str:
         except UnknownFormat as e:
             raise ConfigError(str(e)) from None
     if name in ('catalog_dir', 'export_dir') and value:
-        _check_folder(name, value)
+        _check_folder(name, value, vocabulary)
     return value
 
 
-def _check_folder(name: str, value: str) -> None:
+def _check_folder(name: str, value: str, vocabulary: Vocabulary = PAPER) -> None:
     """catalog_dir: its catalog reads; export_dir: it exists (made now) and is writable."""
     if name == 'catalog_dir':
-        load_catalog_dir(value)
+        load_catalog_dir(value, vocabulary)
         return
     p = Path(value).expanduser()
     try:
@@ -258,6 +254,7 @@ class Served:
     json: str = ''                       # the scene as published on ~/scene
     robot: RobotReport | None = None     # the robot promise, when synthesis measured it
     catalog: Catalog = PROCEDURAL        # whose model ids the scene holds (catalog_dir)
+    vocabulary: Vocabulary = PAPER       # whose room types and categories (the weights')
 
 
 @dataclass
@@ -331,11 +328,12 @@ class SceneServer:
         torch.set_num_threads(config.torch_threads)
         self._synth = self._load(config.weights_dir, config.device, config.runtime)
         for name in BY_WEIGHTS:
-            setattr(config, name, check(name, getattr(config, name)))
+            setattr(config, name, check(name, getattr(config, name), self._synth.vocabulary))
         _check_weights_hold(config, self._synth)
         robot_of(config)
         self.config = config
-        self._catalog = load_catalog_dir(config.catalog_dir)    # read once by check: cached
+        # read once by check: cached
+        self._catalog = load_catalog_dir(config.catalog_dir, self._synth.vocabulary)
         self._publish = publish
         self._on_status = on_status or (lambda s: None)
         self._logger = log or (lambda level, text: None)
@@ -379,13 +377,13 @@ class SceneServer:
             except SceneSynthError as e:
                 what = ', '.join(f'{n} {quoted(getattr(new, n))}' for n in changed)
                 raise ConfigError(f'{what} cannot be used: {e}') from None
-        late = {name: check(name, value) for name, value in changes.items()
-                if name in BY_WEIGHTS}
+        late = {name: check(name, value, (synth or self._synth).vocabulary)
+                for name, value in changes.items() if name in BY_WEIGHTS}
         new = replace(new, **late)
         _check_weights_hold(new, synth or self._synth)
         robot_of(new)
         # Read again when it changed, or when other weights may define its categories.
-        models = load_catalog_dir(new.catalog_dir) \
+        models = load_catalog_dir(new.catalog_dir, (synth or self._synth).vocabulary) \
             if 'catalog_dir' in late or synth is not None else None
         with self._lock:
             self.config = new
@@ -401,10 +399,10 @@ class SceneServer:
         """Queue a room layout (JSON text or dict); False, with the reason on the status,
         when it is rejected."""
         with self._lock:
-            models = self._catalog
+            models, vocabulary = self._catalog, self._synth.vocabulary
         try:
-            scene = parse_room_layout(payload, models)
-            check_room_fits(scene.room)
+            scene = parse_room_layout(payload, models, vocabulary)
+            check_room_fits(scene.room, vocabulary)
         except SceneSynthError as e:
             self._reject(f'{source}: {e}')
             return False
@@ -575,16 +573,18 @@ class SceneServer:
             return
         else:
             base = current
-        base = in_catalog(base, models)
+        base = in_catalog(base, models, synth.vocabulary)
         if job.kind == 'reset':
             scene = Scene(base.room, [], _answered(base.meta))
-            self._commit(job, Served(scene, 'reset', base.meta.get('seed'), catalog=models))
+            self._commit(job, Served(scene, 'reset', base.meta.get('seed'), catalog=models,
+                                     vocabulary=synth.vocabulary))
             job.ok, job.message = True, '{"objects": 0}'
             return
         if job.kind == 'layout' and not cfg.auto_generate:
             scene = base.copy()
             scene.meta = {'generator': 'scene_synth_ros', 'seed': None, **base.meta}
-            self._commit(job, Served(scene, job.source, None, catalog=models))
+            self._commit(job, Served(scene, job.source, None, catalog=models,
+                                     vocabulary=synth.vocabulary))
             job.ok = True
             return
         # This job's settings, passed with each call: the synthesizer is shared.
@@ -616,7 +616,7 @@ class SceneServer:
             return
         served = Served(result.scene, job.source or job.kind, seed, result.added,
                         result.seconds, result.stopped, result.timings, robot=result.robot,
-                        catalog=models)
+                        catalog=models, vocabulary=synth.vocabulary)
         if self._commit(job, served):
             job.ok = True
             job.message = _json({'seed': seed, 'objects': len(result.scene),
@@ -642,7 +642,8 @@ class SceneServer:
         scene.objects.append(obj)
         scene.meta = {**_answered(scene.meta), 'generator': 'scene_synth_ros', 'seed': seed}
         if self._commit(job, Served(scene, 'next_object', seed, [obj],
-                                   time.perf_counter() - t0, catalog=settings.catalog)):
+                                   time.perf_counter() - t0, catalog=settings.catalog,
+                                   vocabulary=synth.vocabulary)):
             job.ok, job.message = True, _json(obj.to_dict())
 
     def _take_seed(self) -> int:
@@ -660,7 +661,7 @@ class SceneServer:
         promise = served.robot or robot.report(served.scene, robot_of(self.config))
         served.scene.meta['robot'] = promise.to_dict()
         # Never publish what the schema would refuse; the model ids are the catalog's.
-        served.json = dump_scene(served.scene, served.catalog)
+        served.json = dump_scene(served.scene, served.catalog, served.vocabulary)
         with self._lock:
             stale = self._stale(job)
             if not stale:
@@ -737,20 +738,22 @@ def robot_of(config: ServerConfig) -> Robot:
         raise ConfigError(str(e)) from None
 
 
-def in_catalog(scene: Scene, models: Catalog) -> Scene:
+def in_catalog(scene: Scene, models: Catalog, vocabulary: Vocabulary = PAPER) -> Scene:
     """``scene`` with each model id that ``models`` lacks replaced by the nearest model of
     its category: a room parsed or furnished before catalog_dir changed keeps its objects and
-    shows the new catalog's models, and its JSON still validates."""
+    shows the new catalog's models, and its JSON still validates. The room's categories are
+    those of ``vocabulary``."""
     def known(o: PlacedObject) -> bool:
         try:
-            return models.get(o.model_id).category == o.category
+            return models.get(o.model_id, vocabulary).category == o.category
         except KeyError:
             return False
     if all(known(o) for o in scene.objects):
         return scene
     out = scene.copy()
     out.objects = [o if known(o) else replace(o, model_id=models.nearest(
-        o.category, o.width, o.depth, scene.room.room_type).model_id) for o in out.objects]
+        o.category, o.width, o.depth, scene.room.room_type, vocabulary).model_id)
+        for o in out.objects]
     return out
 
 

@@ -49,7 +49,7 @@ from shapely.geometry import Polygon
 import torch
 
 from . import catalog
-from .categories import RoomTypeSpec, resolve_room_type, room_spec
+from .categories import PAPER, RoomTypeSpec, Vocabulary
 from .errors import SceneSynthError, UnknownCategory, quoted, sentence
 from .geometry import (
     door_zone,
@@ -63,8 +63,9 @@ from .networks.bundle import (
     Bundle,
     BundleError,
     bundle_path,
-    define_weights_room_types,
+    bundle_specs,
     load_bundle,
+    weights_vocabulary,
 )
 from .networks.category import category_probabilities
 from .networks.config import resolve_device, resolve_runtime
@@ -73,7 +74,7 @@ from .networks.orientation import decode_angle, snap_angle
 from .networks.runtime import OnnxCalls
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer, quarter_turns, turn_image
 from .rules import groups, robot
-from .rules.insertion import INCREMENTAL_RULES, INSERTION_RULES, rule_categories
+from .rules.insertion import INSERTION_RULES, rule_categories, verdicts
 from .rules.robot import RobotReport, RobotState
 from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
 from .synth_config import SynthConfig
@@ -137,13 +138,13 @@ def against_walls(room: Room, obj: PlacedObject, reach: float,
     return replace(obj, position=(float(pos[0]), float(pos[1]), obj.position[2]))
 
 
-def check_room_fits(room: Room) -> None:
-    """SynthesisError unless the smallest first-tier model of the room's type fits on its
-    floor outside the door zones (a narrow strip passes the schema's area check but can
-    hold nothing)."""
-    spec = room_spec(room.room_type)
+def check_room_fits(room: Room, vocabulary: Vocabulary = PAPER) -> None:
+    """SynthesisError unless the smallest first-tier model of the room's type (in
+    ``vocabulary``) fits on its floor outside the door zones (a narrow strip passes the
+    schema's area check but can hold nothing)."""
+    spec = vocabulary.spec(room.room_type)
     small = min((v for c in spec.categories if c.tier == 'first'
-                 for v in catalog.variants(c.name, spec.room_type)),
+                 for v in catalog.variants(c.name, spec.room_type, vocabulary)),
                 key=lambda v: v.width * v.depth)
     short, long_ = sorted((small.width, small.depth))
     free = room.polygon
@@ -260,17 +261,20 @@ class Synthesizer:
         # copy to get there.
         self._channels_last = self.device.type == 'cpu'
         self._renderers: dict[int, TopDownRenderer] = {}
-        # Weights trained on an imported data set define its room types here, before any
-        # layout of one is parsed.
-        self.room_types = define_weights_room_types(self.weights_dir)
+        # The room types of the weights' bundles; what they know of each (a data set's
+        # category sets where they were trained on one) is this synthesizer's vocabulary,
+        # which its callers parse layouts with.
+        self.room_types = list(bundle_specs(self.weights_dir))
+        self.vocabulary = weights_vocabulary(self.weights_dir)
 
     # ---- set-up ---------------------------------------------------------------------------
     def bundle(self, room_type: str) -> Bundle:
         """The networks of ``room_type``, their batch norms folded for inference
         (``fold_batch_norms``); raises ``BundleError`` naming a bad file."""
-        rt = resolve_room_type(room_type)
+        rt = self.vocabulary.resolve(room_type)
         if rt not in self._bundles:
-            self._bundles[rt] = load_bundle(bundle_path(self.weights_dir, rt), self.device)
+            self._bundles[rt] = load_bundle(bundle_path(self.weights_dir, rt, self.vocabulary),
+                                            self.device)
             for net in self._bundles[rt].networks.values():
                 fold_batch_norms(net)
                 if self._channels_last:
@@ -283,7 +287,7 @@ class Synthesizer:
         """The networks of ``room_type`` as synthesis runs them (``networks.runtime``): the
         bundle's torch networks, or their ``OnnxCalls``."""
         self.bundle(room_type)
-        return self._calls[resolve_room_type(room_type)]
+        return self._calls[self.vocabulary.resolve(room_type)]
 
     def load_all(self) -> None:
         """Load the bundle of every room type of the weights directory and ready its network
@@ -304,7 +308,7 @@ class Synthesizer:
         if not isinstance(calls, OnnxCalls):
             return
         n = bundle.config.model.resolution
-        c = FIRST_CATEGORY + len(room_spec(bundle.room_type).names)
+        c = FIRST_CATEGORY + len(self.vocabulary.spec(bundle.room_type).names)
         drawn = self._image(n, c, calls=calls)
         drawn[:c] = 0.0
         image = torch.from_numpy(drawn)[None]
@@ -343,7 +347,8 @@ class Synthesizer:
         if resolution not in self._renderers:
             # Each room under way keeps its frame's architecture layers (64 KB at 64 px):
             # room enough for the widest lockstep (``batch.MAX_LOCKSTEP``).
-            self._renderers[resolution] = TopDownRenderer(resolution, cache_size=64)
+            self._renderers[resolution] = TopDownRenderer(resolution, cache_size=64,
+                                                          vocabulary=self.vocabulary)
         return self._renderers[resolution]
 
     def _settings(self, config: SynthConfig | None) -> SynthConfig:
@@ -365,15 +370,15 @@ class Synthesizer:
         """The state of one room's synthesis with the call's ``config`` (None: the
         synthesizer's own)."""
         config = self._settings(config)
-        rt = resolve_room_type(room.room_type)
-        spec = room_spec(rt)
+        rt = self.vocabulary.resolve(room.room_type)
+        spec = self.vocabulary.spec(rt)
         for o in objects:
             if o.category not in spec:
                 raise SynthesisError(f'object {o.id!r} is a {o.category}, which is not one of '
                                      f'the {rt} categories the networks know')
         bundle = self.bundle(rt)
         m = bundle.config.model
-        frame = Frame.for_room(room, m.resolution)
+        frame = Frame.for_room(room, m.resolution, self.vocabulary)
         grid = Frame(frame.centre, frame.yaw, frame.extent, m.location_resolution)
         n = m.location_resolution
         ii, jj = np.meshgrid(np.arange(n), np.arange(n), indexing='ij')
@@ -398,7 +403,7 @@ class Synthesizer:
         """Furnish ``room`` from empty (objects of a Scene given here are dropped)."""
         if isinstance(room, Scene):
             room = room.room
-        check_room_fits(room)
+        check_room_fits(room, self.vocabulary)
         return self.complete(Scene(room, []), seed, cancel, config)
 
     def complete(self, scene: Scene, seed: int = 0, cancel=None,
@@ -482,7 +487,8 @@ class Synthesizer:
             # none, the group rule that would refuse it outright is waived for it.
             ctx.waived = frozenset(
                 rule for rule in ctx.config.insertion_rules
-                if (zone := groups.partner_zone(scene, rule, category)) is not None
+                if (zone := groups.partner_zone(scene, rule, category,
+                                                self.vocabulary)) is not None
                 and zone.is_empty)
         with torch.inference_mode():
             obj, _ = self._insert_one(ctx, scene, allow_stop=False,
@@ -645,7 +651,7 @@ class Synthesizer:
             for rule in ctx.config.insertion_rules:
                 if rule in ctx.waived:
                     continue
-                zone = groups.partner_zone(scene, rule, category)
+                zone = groups.partner_zone(scene, rule, category, self.vocabulary)
                 if zone is not None:
                     zoned = True
                     mask &= shapely.contains_xy(zone, ctx.centres[:, 0],
@@ -684,8 +690,8 @@ class Synthesizer:
                 continue
             # A crop's frame is seen once: not cached, so that the rooms' own frames stay
             # (in lockstep, 16 rooms' crops pushed them out of the cache at every step).
-            r.render(scene, Frame.local(ctx.room.room_type, pt, yaw, n), out=batch[k, :c],
-                     keep=False)
+            r.render(scene, Frame.local(ctx.room.room_type, pt, yaw, n, self.vocabulary),
+                     out=batch[k, :c], keep=False)
         ctx.crops_held = these if all(yaw == ctx.frame.yaw for yaw in yaws) else None
         return torch.from_numpy(batch).to(self.device)
 
@@ -735,8 +741,8 @@ class Synthesizer:
         the best (none but ties where the footprint was drawn from a learned spread), the
         ones that co-occur most with the models in the room come first (the user's models,
         which no training room holds, keep their footprint order)."""
-        ranked = load_catalog(ctx.config.catalog).ranked(category, width, depth,
-                                                          ctx.spec.room_type)
+        models = load_catalog(ctx.config.catalog, self.vocabulary)
+        ranked = models.ranked(category, width, depth, ctx.spec.room_type, self.vocabulary)
         best = catalog.footprint_distance(ranked[0], width, depth)
         drawn = ctx.bundle.networks['dimensions'].log_sigma is not None
         slack = 0.0 if drawn else ctx.config.fit_slack
@@ -816,15 +822,14 @@ class Synthesizer:
         # The design rules kept at insertion, then the robot promise: what held before this
         # object must hold after it, and the object must keep them itself.
         for name in ctx.config.insertion_rules:
-            changed_by = rule_categories(name, ctx.spec.room_type)
+            changed_by = rule_categories(name, ctx.spec.room_type, self.vocabulary)
             if name in ctx.waived or (changed_by is not None and obj.category not in changed_by):
                 continue
-            verdicts = INSERTION_RULES[name]
             key = (name, id(scene), len(scene.objects))
             if key not in ctx.rules:
-                ctx.rules[key] = verdicts(scene)
+                ctx.rules[key] = verdicts(name, scene, self.vocabulary)
             before = ctx.rules[key]
-            now = verdicts(after, new=obj) if name in INCREMENTAL_RULES else verdicts(after)
+            now = verdicts(name, after, self.vocabulary, new=obj)
             if not all(ok or before.get(case) is False for case, ok in now.items()):
                 return name
         if ctx.room.doors:

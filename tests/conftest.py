@@ -42,16 +42,6 @@ def graph_cache(tmp_path_factory) -> Path:
         yield path
 
 
-@pytest.fixture(autouse=True)
-def paper_room_types():
-    """Every test starts and ends with the paper's room types only: a test that loads
-    weights of an imported data set defines its room types in the process
-    (``categories.define_room_types``), which must not leak into the next test."""
-    from scene_synth_ros.categories import room_types_defined
-    with room_types_defined([], fresh=True):
-        yield
-
-
 @pytest.fixture(scope='session')
 def tiny_weights(tmp_path_factory) -> Path:
     """A weights directory with tiny, briefly trained bundles for bathroom and bedroom."""
@@ -83,16 +73,13 @@ class CliRun:
 def cli(capsys):
     """``cli(*args, ok=True)`` runs ``scene-synth *args`` through ``main(argv)`` in this
     process and returns a ``CliRun``; with ``ok`` it also asserts exit code 0."""
-    from scene_synth_ros.categories import room_types_defined
     from scene_synth_ros.cli import main
 
     def run(*args, ok: bool = True) -> CliRun:
         capsys.readouterr()                 # drop output from before, so this is the command's
         threads = torch.get_num_threads()
         try:
-            # each command starts with the room types a fresh process has
-            with room_types_defined([], fresh=True):
-                code = main([str(a) for a in args])
+            code = main([str(a) for a in args])
         except SystemExit as e:             # argparse: usage errors and --help
             code = int(e.code or 0)
         finally:

@@ -9,15 +9,7 @@ from conftest import tiny_config
 import pytest
 
 from scene_synth_ros import catalog
-from scene_synth_ros.categories import (
-    RoomTypeSpec,
-    define_room_types,
-    paper_spec,
-    resolve_room_type,
-    room_spec,
-    room_types,
-    room_types_defined,
-)
+from scene_synth_ros.categories import PAPER, RoomTypeSpec, paper_spec, resolve_room_type, room_spec
 from scene_synth_ros.datasets import import_dataset
 from scene_synth_ros.datasets.training import (
     describe_dir,
@@ -44,9 +36,8 @@ def kitchen_weights(data, tmp_path_factory) -> Path:
     """Tiny kitchen networks trained on the imported kitchens (a room type the paper lacks)."""
     from scene_synth_ros.networks.train import train
     root = tmp_path_factory.mktemp('kitchen')
-    with room_types_defined([]):
-        train(['kitchen'], tiny_config(), root / 'run', root / 'weights', progress=False,
-              echo=lambda s: None, data_dir=data)
+    train(['kitchen'], tiny_config(), root / 'run', root / 'weights', progress=False,
+          echo=lambda s: None, data_dir=data)
     return root / 'weights'
 
 
@@ -106,22 +97,39 @@ def test_the_held_out_split_is_seeded_and_disjoint():
     assert split(names, 1)[1] != held
 
 
-def test_a_data_set_defines_room_types_for_a_while(data):
+def test_a_data_sets_vocabulary_knows_its_room_types_and_the_papers_does_not(data):
     specs = room_type_specs(describe_dir(data))
+    vocabulary = PAPER.with_specs(specs.values())
+    assert vocabulary.room_types == ('bedroom', 'living', 'office', 'bathroom', 'kitchen')
+    assert vocabulary.spec('bedroom') == specs['bedroom'] != paper_spec('bedroom')
+    assert vocabulary.spec('Kitchen').names == specs['kitchen'].names
+    assert vocabulary.defines('bedroom') and not vocabulary.defines('office')
+    v = catalog.variants('fridge', 'kitchen', vocabulary)[0]
+    assert v.model_id == 'kitchen__fridge_00' and catalog.get(v.model_id, vocabulary) == v
+    with pytest.raises(RoomTypeConflict, match="'bedroom' is already defined"):
+        vocabulary.with_specs([RoomTypeSpec.from_dict({**specs['bedroom'].to_dict(),
+                                                       'rooms': 1})])
+    assert vocabulary.with_specs([specs['bedroom']]) == vocabulary     # the same set: no change
+    # The paper's vocabulary, in the same process, is untouched.
     with pytest.raises(UnknownRoomType, match="unknown room type 'kitchen'"):
         resolve_room_type('kitchen')
-    with room_types_defined(specs.values()):
-        assert room_types()[-1] == 'kitchen'
-        assert room_spec('bedroom') == specs['bedroom'] != paper_spec('bedroom')
-        assert room_spec('Kitchen').names == specs['kitchen'].names
-        v = catalog.variants('fridge', 'kitchen')[0]
-        assert v.model_id == 'kitchen__fridge_00' and catalog.get(v.model_id) == v
-        with pytest.raises(RoomTypeConflict, match="'bedroom' is already defined"):
-            define_room_types([specs['living'].__class__.from_dict(
-                {**specs['bedroom'].to_dict(), 'rooms': 1})])
-    assert room_spec('bedroom') == paper_spec('bedroom')
+    assert room_spec('bedroom') == paper_spec('bedroom') and PAPER.room_types[-1] == 'bathroom'
     with pytest.raises(KeyError):
         catalog.get('kitchen__fridge_00')
+
+
+def test_a_data_sets_own_categories_are_known_where_its_vocabulary_is_passed(data):
+    from scene_synth_ros.categories import CATEGORIES
+    from scene_synth_ros.plot import UNKNOWN_COLOR, category_color
+    from scene_synth_ros.user_catalog.spec import category_of
+    vocabulary = PAPER.with_specs(room_type_specs(describe_dir(data)).values())
+    own = next(n for n in vocabulary.spec('kitchen').names if n not in CATEGORIES)
+    assert vocabulary.info(own) == vocabulary.spec('kitchen').info(own)
+    assert category_of(own.replace(' ', '_'), vocabulary) == own      # a user's catalog folder
+    assert category_of(own) is None
+    assert category_color(own, vocabulary) != UNKNOWN_COLOR == category_color(own)
+    with pytest.raises(KeyError):
+        PAPER.info(own)
 
 
 def test_trained_bundles_carry_their_category_set_and_furnish_rooms(data, kitchen_weights):
@@ -129,10 +137,10 @@ def test_trained_bundles_carry_their_category_set_and_furnish_rooms(data, kitche
     from scene_synth_ros.networks.bundle import load_bundle
     from scene_synth_ros.synth import Synthesizer
     spec = room_type_specs(describe_dir(data))['kitchen']
-    bundle = load_bundle(kitchen_weights / 'kitchen.pt')      # defines the kitchen
-    assert bundle.spec == spec == room_spec('kitchen')
+    bundle = load_bundle(kitchen_weights / 'kitchen.pt')
+    assert bundle.spec == spec == bundle.vocabulary.spec('kitchen')
     synth = Synthesizer(kitchen_weights)
-    assert synth.room_types == ['kitchen']
+    assert synth.room_types == ['kitchen'] and synth.vocabulary.spec('kitchen') == spec
     shell = load_rooms(data, spec).scenes[0].room
     scene = synth.generate(shell, seed=3).scene
     assert scene.objects, 'the tiny networks placed nothing'
@@ -140,6 +148,39 @@ def test_trained_bundles_carry_their_category_set_and_furnish_rooms(data, kitche
         assert o.category in spec and o.model_id.startswith('kitchen__')
     assert check_scene(scene).ok
     assert synth.generate(shell, seed=3).scene.to_dict() == scene.to_dict()
+
+
+def test_two_synthesizers_in_one_process_keep_their_own_room_types(data, kitchen_weights):
+    """Loading weights of a data set changes nothing for anyone else in the process: each
+    synthesizer's vocabulary parses its own layouts, the paper's refuses the data set's room
+    type with the sentence it always had."""
+    from scene_synth_ros.corpus.generate import first_shell
+    from scene_synth_ros.render import num_channels
+    from scene_synth_ros.schema import SceneValidationError, parse_room_layout
+    from scene_synth_ros.synth import Synthesizer
+    specs = room_type_specs(describe_dir(data))
+    shipped = Synthesizer()
+    before = parse_room_layout(first_shell('bedroom', 0).to_dict(),
+                               vocabulary=shipped.vocabulary)
+    kitchen = Synthesizer(kitchen_weights)
+    layout = load_rooms(data, specs['kitchen']).scenes[0].room.to_dict()
+    assert parse_room_layout(layout, vocabulary=kitchen.vocabulary).room.room_type == 'kitchen'
+    refused = ("room_type 'kitchen' is not a known room type (expected one of bedroom, "
+               "living, office, bathroom, or an alias such as 'living room')")
+    for vocabulary in (shipped.vocabulary, PAPER):
+        with pytest.raises(SceneValidationError) as e:
+            parse_room_layout(layout, vocabulary=vocabulary)
+        assert str(e.value) == refused
+    # The shipped synthesizer's bedroom is still the paper's, after the kitchen weights.
+    after = parse_room_layout(first_shell('bedroom', 0).to_dict(),
+                              vocabulary=shipped.vocabulary)
+    assert after.to_dict() == before.to_dict() == parse_room_layout(
+        first_shell('bedroom', 0).to_dict()).to_dict()
+    assert shipped.vocabulary == PAPER
+    # A data set's own bedroom lives in its vocabulary only.
+    own = PAPER.with_specs([specs['bedroom']])
+    assert num_channels('bedroom', own) != num_channels('bedroom')
+    assert num_channels('bedroom', shipped.vocabulary) == num_channels('bedroom')
 
 
 def test_the_commands_take_the_data_sets_room_types_from_the_weights(

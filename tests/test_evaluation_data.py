@@ -3,8 +3,8 @@ rooms of an imported data set that training held out.
 
 A tiny data set is cut from the real ProcTHOR file (ten bedrooms and three kitchens), tiny
 bedroom weights are trained on it, and one evaluation of two synthesized rooms per held-out
-shell is shared by the tests. Everything that defines room types runs inside
-``categories.room_types_defined([])``, so that the other tests keep the paper's bedroom.
+shell is shared by the tests. The data set's bedroom is its vocabulary's, passed where it is
+needed; the paper's bedroom stays the paper's in the same process.
 """
 import json
 import math
@@ -18,6 +18,7 @@ from scene_synth_ros import categories
 from scene_synth_ros import rules as design_rules
 from scene_synth_ros.datasets import description, import_dataset
 from scene_synth_ros.datasets.training import split
+from scene_synth_ros.errors import UnknownRoomType
 from scene_synth_ros.evaluation.dataset import DataEvalConfig, run_data_evaluation
 from scene_synth_ros.networks.bundle import bundle_specs
 from scene_synth_ros.rules import walls
@@ -53,9 +54,8 @@ def weights(data, tmp_path_factory) -> Path:
     root = tmp_path_factory.mktemp('weights')
     threads = torch.get_num_threads()
     try:
-        with categories.room_types_defined([]):
-            train(['bedroom'], tiny_config(), root / 'run', root / 'weights', progress=False,
-                  echo=lambda s: None, data_dir=data)
+        train(['bedroom'], tiny_config(), root / 'run', root / 'weights', progress=False,
+              echo=lambda s: None, data_dir=data)
     finally:
         torch.set_num_threads(threads)
     return root / 'weights'
@@ -64,10 +64,9 @@ def weights(data, tmp_path_factory) -> Path:
 @pytest.fixture(scope='module')
 def evaluated(data, weights, tmp_path_factory):
     out = tmp_path_factory.mktemp('report')
-    with categories.room_types_defined([]):
-        results = run_data_evaluation(data, weights, 'all', CONFIG, out, workers=1,
-                                      progress=False, echo=lambda s: None,
-                                      markdown_copy=out / 'copy' / 'evaluation.md')
+    results = run_data_evaluation(data, weights, 'all', CONFIG, out, workers=1,
+                                  progress=False, echo=lambda s: None,
+                                  markdown_copy=out / 'copy' / 'evaluation.md')
     return results, out
 
 
@@ -140,8 +139,7 @@ def test_wall_rules_read_the_room_types_own_category_set(weights):
         assert walls.wall_categories(rt) == (walls.WALL_FURNITURE, walls.LARGE_PIECES)
     spec = bundle_specs(weights)['bedroom']
     own = {c.name for c in spec.categories if c.info.tier == 'first' and c.info.against_wall}
-    with categories.room_types_defined([spec]):
-        wall, large = walls.wall_categories('bedroom')
+    wall, large = walls.wall_categories('bedroom', categories.PAPER.with_specs([spec]))
     assert 'bed' in own and own <= wall and 'bed' in large
     assert not (wall - own) & set(spec.names)       # the data set's flags, not the paper's
     assert walls.wall_categories('bedroom') == (walls.WALL_FURNITURE, walls.LARGE_PIECES)
@@ -160,9 +158,11 @@ def test_the_report_files_and_report_only(evaluated, cli):
     assert 'KL training' in run.stdout and 'bedroom' in run.stdout
 
 
-def test_the_paper_room_types_come_back_after_the_run(evaluated):
-    assert not categories.defined_room_type('bedroom')
+def test_the_paper_room_types_stay_the_papers_after_the_run(evaluated):
+    assert not categories.PAPER.defines('bedroom')
     assert categories.room_spec('bedroom') == categories.paper_spec('bedroom')
+    with pytest.raises(UnknownRoomType):
+        categories.resolve_room_type('kitchen')
 
 
 @pytest.mark.parametrize('args, words', [
@@ -183,9 +183,8 @@ def test_bad_input_is_one_sentence_and_exit_2(cli, data, weights, tmp_path, args
     (tmp_path / 'empty').mkdir()
     paths = {'DATA': data, 'W': weights, 'NODATA': tmp_path, 'EMPTY': tmp_path / 'empty',
              'NOWEIGHTS': tmp_path / 'none'}
-    with categories.room_types_defined([]):
-        run = cli('evaluate', *[paths.get(a, a) for a in args], '--out', tmp_path / 'out',
-                  ok=False)
+    run = cli('evaluate', *[paths.get(a, a) for a in args], '--out', tmp_path / 'out',
+              ok=False)
     assert run.returncode == 2
     assert words in run.stderr and run.stderr.strip().count('\n') == 0
     assert not (tmp_path / 'out' / 'results.json').exists()

@@ -26,7 +26,7 @@ import os
 from pathlib import Path
 from typing import Iterator
 
-from ..categories import defined_room_type, resolve_room_type
+from ..categories import PAPER, Vocabulary
 from ..errors import SceneSynthError
 from ..limits import MAX_PAYLOAD_BYTES
 from ..schema import parse_room_layout, parse_scene, read_payload
@@ -95,11 +95,11 @@ class Source:
     path: str = ''
 
     @classmethod
-    def shells(cls, room_types) -> Source:
-        types = tuple(resolve_room_type(t) for t in room_types)
+    def shells(cls, room_types, vocabulary: Vocabulary = PAPER) -> Source:
+        types = tuple(vocabulary.resolve(t) for t in room_types)
         if not types:
             raise BatchError('shells need at least one room type')
-        own = [t for t in types if defined_room_type(t)]
+        own = [t for t in types if vocabulary.defines(t)]
         if own:
             raise BatchError(f'{own[0]} is a room type of the data set the weights were '
                              f'trained on, and the corpus makes only the paper\'s rooms: '
@@ -169,11 +169,11 @@ class Source:
         return RoomJob(job.index, job.seed, job.layout, data=data, problem=problem)
 
 
-def scene_from_document(data: bytes, models=None):
+def scene_from_document(data: bytes, models=None, vocabulary: Vocabulary = PAPER):
     """A scene or room layout (JSON or YAML) as a validated Scene, as ``schema.load_scene``
     reads a file; model ids are those of ``models`` (a ``catalog.Catalog``, default the
     procedural one)."""
     d = read_payload(data)
     if isinstance(d, dict) and 'room' not in d:
-        return parse_room_layout(d, models)
-    return parse_scene(d, models)
+        return parse_room_layout(d, models, vocabulary)
+    return parse_scene(d, models, vocabulary)

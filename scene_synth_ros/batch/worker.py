@@ -210,7 +210,9 @@ class Worker:
         if job.room_type is not None:
             scene = Scene(first_shell(job.room_type, job.shell_seed, job.index), [])
         else:
-            scene = scene_from_document(job.data, load_catalog(self.spec.synthesis.catalog))
+            vocabulary = self.synth.vocabulary
+            scene = scene_from_document(
+                job.data, load_catalog(self.spec.synthesis.catalog, vocabulary), vocabulary)
         furnish = self.synth.generate if self.spec.mode == 'generate' else self.synth.complete
         result = furnish(scene, job.seed)
         files.update(self.files(job.name, result.scene))
@@ -227,13 +229,14 @@ class Worker:
     def files(self, name: str, scene) -> dict[str, bytes]:
         """The room's files: shared models first, then what refers to them, the scene last,
         so that a reader who finds a file finds what it names."""
-        models = load_catalog(self.spec.synthesis.catalog)
+        models = load_catalog(self.spec.synthesis.catalog, self.synth.vocabulary)
         shared, own = {}, {}
         with tempfile.TemporaryDirectory(prefix='scene-synth-batch-') as tmp:
             root = Path(tmp)
             if self.spec.png:
                 (root / THUMBNAILS).mkdir()
-                save_png(scene, root / THUMBNAILS / f'{name}.png', title=name, **THUMBNAIL)
+                save_png(scene, root / THUMBNAILS / f'{name}.png', title=name,
+                         vocabulary=self.synth.vocabulary, **THUMBNAIL)
             for fmt in self.spec.exports:
                 export.write(scene, fmt, root / fmt / f'{name}{export.FORMATS[fmt].suffix}',
                              root / fmt / MESHES, catalog=models)
@@ -249,5 +252,6 @@ class Worker:
                     own[rel] = p.read_bytes()
             for rel in sorted(primary - {f'{SCENES}/{name}.json'}):
                 own[rel] = (root / rel).read_bytes()
-        own[f'{SCENES}/{name}.json'] = (dump_scene(scene, models) + '\n').encode('utf-8')
+        own[f'{SCENES}/{name}.json'] = (dump_scene(scene, models, self.synth.vocabulary)
+                                        + '\n').encode('utf-8')
         return {**shared, **own}

@@ -13,7 +13,7 @@ import sys
 
 from ..errors import SceneSynthError
 from . import catalog, corpus, datasets, evaluation, export, ros, synthesis, training
-from .common import EXIT_BAD_INPUT, define_weights
+from .common import EXIT_BAD_INPUT, weights_vocabulary
 
 GROUPS = (synthesis, export, training, evaluation, corpus, datasets, catalog, ros)
 DESCRIPTION = ('Furnish empty rooms for robot simulation: furnish one room or thousands, '
@@ -34,7 +34,9 @@ def main(argv: list[str] | None = None) -> int:
     """Run one command; a ``SceneSynthError`` is printed as its one sentence, exit code 2."""
     args = build_parser().parse_args(argv)
     try:
-        define_weights(args)
+        # What the weights in use know (a data set's room types and categories): every
+        # command reads room types and scenes with it.
+        args.vocabulary = weights_vocabulary(args)
         return args.func(args)
     except SceneSynthError as e:
         print(f'scene-synth: {e}', file=sys.stderr)

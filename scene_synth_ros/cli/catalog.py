@@ -30,7 +30,7 @@ def cmd_catalog(args) -> int:
     if args.action == 'build':
         return _build(args)
     if args.action == 'list':
-        models = load_catalog(args.catalog)
+        models = load_catalog(args.catalog, args.vocabulary)
         for v in models.all_variants():
             w, d, h = v.size
             print(f'{v.model_id:20s} {v.category:16s} {w:6.3f} x {d:6.3f} x {h:6.3f} m')
@@ -51,7 +51,7 @@ def _build(args) -> int:
     from ..user_catalog import build_catalog, write_catalog
     if not args.folder:
         raise UserError('catalog build needs the folder of your mesh files')
-    report = build_catalog(args.folder, args.manifest, args.category_map)
+    report = build_catalog(args.folder, args.manifest, args.category_map, args.vocabulary)
     print(report.text())
     out = Path(args.out) if args.out else Path(args.folder) / 'catalog.json'
     if not report.models:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from ..categories import resolve_room_type
+from ..categories import PAPER, Vocabulary
 from ..errors import SceneSynthError
 from ..synth_config import ROBOT_SETTINGS, Setting, check_value
 
@@ -25,35 +25,38 @@ def data_set_option(parser) -> None:
                         'they furnished')
 
 
-def define_weights(args) -> None:
-    """Define the room types of the data set that ``args.weights_dir``'s bundles were
-    trained on, before any room type or scene is read (``categories.define_room_types``)."""
+def weights_vocabulary(args) -> Vocabulary:
+    """The room types and categories a command reads room types and scenes with: those of
+    the data set ``args.weights_dir``'s bundles were trained on, else the paper's. ``main``
+    sets it as ``args.vocabulary``."""
     if getattr(args, 'weights_dir', None) and getattr(args, 'defines_room_types', True):
-        from ..networks.bundle import define_weights_room_types
-        define_weights_room_types(args.weights_dir)
+        from ..networks.bundle import weights_vocabulary as of_weights
+        return of_weights(args.weights_dir)
+    return PAPER
 
 
-def room_types(value: str) -> list[str]:
+def room_types(value: str, vocabulary: Vocabulary = PAPER) -> list[str]:
     """The room types a ``--room-type`` value names: one, or every one for ``all`` (the
-    paper's four, or every room type of the data set of the weights in use)."""
+    paper's four, or every room type of ``vocabulary``, the weights' in use)."""
     if value == 'all':
-        from ..categories import room_types as known
-        return list(known())
-    return [resolve_room_type(value)]
+        return list(vocabulary.room_types)
+    return [vocabulary.resolve(value)]
 
 
-def load_catalog(path: str | None):
-    """The catalog of a ``--catalog`` option: the procedural one without it."""
+def load_catalog(path: str | None, vocabulary: Vocabulary = PAPER):
+    """The catalog of a ``--catalog`` option: the procedural one without it; its categories
+    are those of ``vocabulary``."""
     from ..user_catalog import load_catalog as load  # trimesh and the schemas: not for --help
-    return load(path)
+    return load(path, vocabulary)
 
 
-def load_scene_file(path: str, catalog=None):
+def load_scene_file(path: str, catalog=None, vocabulary: Vocabulary = PAPER):
     """The scene (or room layout) in ``path``, its model ids those of ``catalog`` (default:
-    the procedural catalog); an error names the file."""
+    the procedural catalog), its room types and categories those of ``vocabulary``; an
+    error names the file."""
     from ..schema import SceneValidationError, load_scene
     try:
-        return load_scene(path, catalog)
+        return load_scene(path, catalog, vocabulary)
     except FileNotFoundError:
         raise UserError(f'{path}: no such file') from None
     except SceneValidationError as e:
@@ -74,19 +77,20 @@ def object_table(objects, title: str = '') -> str:
     return '\n'.join(lines)
 
 
-def write_scene(scene, out: str | None, png: str | None, title: str, catalog=None) -> None:
+def write_scene(scene, out: str | None, png: str | None, title: str, catalog=None,
+                vocabulary: Vocabulary = PAPER) -> None:
     """Save ``scene`` as JSON to ``out`` and/or as a picture to ``png`` (either may be None),
     creating their directories and saying what was written; its model ids are those of
-    ``catalog`` (default: the procedural catalog)."""
+    ``catalog`` (default: the procedural catalog), its categories those of ``vocabulary``."""
     if out:
         from ..schema import save_scene
         Path(out).parent.mkdir(parents=True, exist_ok=True)
-        save_scene(scene, out, catalog)
+        save_scene(scene, out, catalog, vocabulary)
         print(f'wrote {out}')
     if png:
         from ..plot import save_png
         Path(png).parent.mkdir(parents=True, exist_ok=True)
-        save_png(scene, png, title=title)
+        save_png(scene, png, title=title, vocabulary=vocabulary)
         print(f'wrote {png}')
 
 

@@ -80,11 +80,10 @@ def _evaluate(args) -> int:
     if args.rooms_per_shell is not None:
         raise UserError('--rooms-per-shell needs --data: the paper-corpus evaluation '
                         'furnishes each held-out shell once')
-    from ..categories import defined_room_type
     from ..evaluation.report import terminal_summary
     from ..evaluation.run import EvalConfig, run_evaluation
-    rts = room_types(args.room_type)
-    own = [rt for rt in rts if defined_room_type(rt)]
+    rts = room_types(args.room_type, args.vocabulary)
+    own = [rt for rt in rts if args.vocabulary.defines(rt)]
     if own:
         raise UserError(f'the {own[0]} weights were trained on an imported data set, not '
                         f'on the procedural corpus: evaluate them with --data (that data set)')

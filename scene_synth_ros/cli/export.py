@@ -64,8 +64,8 @@ def add_parser(sub) -> None:
 
 def cmd_export(args) -> int:
     from ..export import export_sdf, write
-    models = load_catalog(args.catalog)
-    scene = load_scene_file(args.scene, models)
+    models = load_catalog(args.catalog, args.vocabulary)
+    scene = load_scene_file(args.scene, models, args.vocabulary)
     wanted = [(fmt, getattr(args, fmt)) for fmt in ('sdf', 'gltf', 'mjcf', 'urdf', 'usd')
               if getattr(args, fmt)]
     if not (wanted or args.sdf_model):
@@ -85,19 +85,20 @@ def cmd_export(args) -> int:
 
 
 def cmd_render(args) -> int:
-    scene = load_scene_file(args.scene)
+    scene = load_scene_file(args.scene, vocabulary=args.vocabulary)
     if not (args.png or args.channels):
         raise UserError('render needs --png and/or --channels to know what to write')
     if args.png:
         from ..plot import save_png
-        save_png(scene, args.png, title=args.title or Path(args.scene).stem)
+        save_png(scene, args.png, title=args.title or Path(args.scene).stem,
+                 vocabulary=args.vocabulary)
         print(f'wrote {args.png}')
     if args.channels:
         import numpy as np
 
         from ..render import TopDownRenderer
         try:
-            image = TopDownRenderer(args.resolution).render(scene)
+            image = TopDownRenderer(args.resolution, vocabulary=args.vocabulary).render(scene)
         except ValueError as e:
             # The renderer names the problem (a room too big for the image), not the file.
             raise UserError(f'{args.scene}: {e}') from None
@@ -110,7 +111,7 @@ def cmd_render(args) -> int:
 def cmd_validate(args) -> int:
     from ..geometry import check_scene
     for path in args.files:
-        scene = load_scene_file(path)
+        scene = load_scene_file(path, vocabulary=args.vocabulary)
         report = check_scene(scene)
         print(f'{path}: schema OK, {len(scene)} objects, physically {report.summary()}')
     return 0
@@ -123,13 +124,13 @@ def cmd_reach(args) -> int:
         raise UserError('--png draws one scene: give one file')
     broken = 0
     for path in args.files:
-        scene = load_scene_file(path)
+        scene = load_scene_file(path, vocabulary=args.vocabulary)
         found = report(scene, robot)
         broken += not found.kept
         print(f'{path}: {found.sentence()}')
         if args.png:
             from ..plot import save_reach_png
             Path(args.png).parent.mkdir(parents=True, exist_ok=True)
-            save_reach_png(scene, robot, args.png)
+            save_reach_png(scene, robot, args.png, vocabulary=args.vocabulary)
             print(f'wrote {args.png}')
     return 1 if broken else 0

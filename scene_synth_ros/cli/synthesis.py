@@ -136,21 +136,21 @@ def _synth_config(args):
     if hasattr(args, 'robot_radius'):
         given['robot'] = robot_from(args)
     if given.get('catalog'):
-        load_catalog(given['catalog'])       # a bad file is one sentence before any work
+        # a bad file is one sentence before any work
+        load_catalog(given['catalog'], args.vocabulary)
         given['catalog'] = str(Path(given['catalog']).resolve())
     elif 'catalog' in given:                 # --catalog '': the procedural catalog
         del given['catalog']
     return SynthConfig(**given)
 
 
-def _catalog_line(args, room_type: str) -> str | None:
+def _catalog_line(args, room_type: str, vocabulary) -> str | None:
     """Which of the room type's categories the user's catalog furnishes, and which fall
     back to the procedural models; None without --catalog."""
     if not getattr(args, 'catalog', None):
         return None
-    from ..categories import room_spec
-    names = room_spec(room_type).names
-    models = load_catalog(args.catalog)
+    names = vocabulary.spec(room_type).names
+    models = load_catalog(args.catalog, vocabulary)
     fallback = models.fallback(names)
     own = [c for c in names if c not in fallback]
     return (f'catalog {args.catalog}: your models for {", ".join(own) or "no category"}; '
@@ -176,15 +176,14 @@ def cmd_generate(args) -> int:
     _one_room_only(args)
     synth = _synthesizer(args)
     if args.layout:
-        room = load_scene_file(args.layout).room
+        room = load_scene_file(args.layout, vocabulary=synth.vocabulary).room
         title = f'{Path(args.layout).stem} (seed {args.seed})'
     else:
-        from ..categories import defined_room_type
         from ..corpus.generate import first_shell
-        rt = room_types(args.room_type)
+        rt = room_types(args.room_type, synth.vocabulary)
         if len(rt) != 1:
             raise UserError('generate furnishes one room: give one --room-type, not all')
-        if defined_room_type(rt[0]):
+        if synth.vocabulary.defines(rt[0]):
             raise UserError(f'{rt[0]} is a room type of the data set the weights were trained '
                             f'on, and the corpus makes only the paper\'s rooms: give --layout')
         room = first_shell(rt[0], args.seed)
@@ -194,9 +193,10 @@ def cmd_generate(args) -> int:
     print(_timing_line(result))
     print(f'physical check: {check_scene(result.scene).summary()}')
     print(f'robot: {result.robot.sentence()}')
-    if line := _catalog_line(args, room.room_type):
+    if line := _catalog_line(args, room.room_type, synth.vocabulary):
         print(line)
-    write_scene(result.scene, args.out, args.png, title, load_catalog(args.catalog))
+    write_scene(result.scene, args.out, args.png, title,
+                load_catalog(args.catalog, synth.vocabulary), synth.vocabulary)
     return 0
 
 
@@ -207,17 +207,19 @@ def cmd_complete(args) -> int:
         return _cmd_batch(args, 'complete')
     _one_room_only(args)
     synth = _synthesizer(args)
-    scene = load_scene_file(args.scene, load_catalog(args.catalog))
+    models = load_catalog(args.catalog, synth.vocabulary)
+    scene = load_scene_file(args.scene, models, synth.vocabulary)
     result = synth.complete(scene, args.seed)
     print(object_table(scene.objects, f'kept ({len(scene.objects)}):'))
     print(object_table(result.added, f'added ({len(result.added)}):'))
     print(_timing_line(result))
     print(f'physical check: {check_scene(result.scene).summary()}')
     print(f'robot: {result.robot.sentence()}')
-    if line := _catalog_line(args, scene.room.room_type):
+    if line := _catalog_line(args, scene.room.room_type, synth.vocabulary):
         print(line)
     write_scene(result.scene, args.out, args.png,
-                f'{Path(args.scene).stem} completed (seed {args.seed})', load_catalog(args.catalog))
+                f'{Path(args.scene).stem} completed (seed {args.seed})', models,
+                synth.vocabulary)
     return 0
 
 
@@ -247,7 +249,7 @@ def _cmd_batch(args, mode: str) -> int:
     elif args.layouts or args.layout:
         source = Source.at(args.layouts or args.layout)
     else:
-        source = Source.shells(room_types(args.room_type))
+        source = Source.shells(room_types(args.room_type, args.vocabulary), args.vocabulary)
     from ..export import parse_formats
     exports = parse_formats(args.export) if args.export is not None else ()
     if args.export is not None and not exports:
@@ -265,7 +267,8 @@ def cmd_suggest(args) -> int:
     if args.k < 1:
         raise UserError(f'-k must be at least 1, got {args.k}')
     synth = _synthesizer(args)
-    scene = load_scene_file(args.scene, load_catalog(args.catalog))
+    scene = load_scene_file(args.scene, load_catalog(args.catalog, synth.vocabulary),
+                            synth.vocabulary)
     found = synth.suggest(scene, args.k, args.seed)
     print(object_table(found, f'{len(found)} proposals for the next object of '
                               f'{Path(args.scene).name}:'))
@@ -277,7 +280,7 @@ def cmd_suggest(args) -> int:
         from ..plot import save_grid
         from ..scene import Scene
         shown = [Scene(scene.room, scene.objects + [o]) for o in found]
-        save_grid(shown, args.png, ncols=min(len(shown), 3) or 1,
+        save_grid(shown, args.png, ncols=min(len(shown), 3) or 1, vocabulary=synth.vocabulary,
                   titles=[f'+ {o.category}' for o in found])
         print(f'wrote {args.png}')
     return 0
@@ -309,7 +312,6 @@ def _synthesized_grid(args) -> tuple[list, list[str]]:
 def _data_grid(args) -> tuple[list, list[str]]:
     """Per room type of the weights, ``per_type`` held-out rooms of the data set, then the
     rooms synthesized in their empty shells."""
-    from ..categories import room_spec
     from ..datasets.training import describe_dir, split_rooms
     if not args.data or not args.weights_dir:
         raise UserError('--source data needs --data and --weights-dir: the imported data set '
@@ -321,7 +323,8 @@ def _data_grid(args) -> tuple[list, list[str]]:
         if rt not in in_data:
             continue
         seed = synth.bundle(rt).config.train.corpus_seed
-        split = split_rooms(args.data, room_spec(rt), seed, held_out_rooms=args.per_type)
+        split = split_rooms(args.data, synth.vocabulary.spec(rt), seed,
+                            held_out_rooms=args.per_type)
         for name, real in zip(split.held_out_names, split.held_out, strict=True):
             scenes.append(real)
             titles.append(f'{rt}: {Path(name).stem} (held out)')
@@ -353,7 +356,7 @@ def cmd_gallery(args) -> int:
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     cols = args.per_type * (2 if args.source == 'data' else 1)
-    save_grid(scenes, out, ncols=cols, titles=titles)
+    save_grid(scenes, out, ncols=cols, titles=titles, vocabulary=args.vocabulary)
     print(f'wrote {out}')
     return 0
 

@@ -30,7 +30,8 @@ def add_parser(sub) -> None:
                    'train its room types (all of them by default) on its rooms; the bundles '
                    'carry its category sets')
     c.add_argument('--quiet', action='store_true', help='no progress bars')
-    # training writes into --weights-dir: its old bundles' category sets must not be defined
+    # training writes into --weights-dir: the vocabulary is the data set's (or the paper's),
+    # not that of the old bundles there
     c.set_defaults(func=cmd_train, defines_room_types=False)
 
     c = sub.add_parser('components', help="the paper's component table of trained weights, "
@@ -107,8 +108,8 @@ def cmd_components(args) -> int:
     from ..networks.train import format_components
     from ..paths import weights_dir
     tables = {}
-    for rt in room_types(args.room_type):
-        path = bundle_path(args.weights_dir or weights_dir(), rt)
+    for rt in room_types(args.room_type, args.vocabulary):
+        path = bundle_path(args.weights_dir or weights_dir(), rt, args.vocabulary)
         b = load_bundle(path)
         if 'components' not in b.metrics:
             raise UserError(f'{path}: the bundle carries no component metrics')

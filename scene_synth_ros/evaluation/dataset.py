@@ -26,7 +26,7 @@ from pathlib import Path
 import time
 from typing import TYPE_CHECKING, Sequence
 
-from ..categories import ROOM_TYPE_ALIASES, RoomTypeSpec, kl_divergence, room_types_defined
+from ..categories import PAPER, ROOM_TYPE_ALIASES, RoomTypeSpec, Vocabulary, kl_divergence
 from ..errors import DatasetError, RoomTypeConflict
 from ..scene import Scene
 from .data import SynthRecord
@@ -116,11 +116,11 @@ def choose_room_types(value: str, held: Sequence[str], bundles: dict, data_dir: 
     return rts
 
 
-def _train_config(weights_dir: Path, room_type: str):
+def _train_config(weights_dir: Path, room_type: str, vocabulary: Vocabulary):
     """The training configuration of a bundle: how it split the data set's rooms."""
     from ..networks.bundle import BundleError, bundle_path, load_bundle
     try:
-        return load_bundle(bundle_path(weights_dir, room_type)).config.train
+        return load_bundle(bundle_path(weights_dir, room_type, vocabulary)).config.train
     except BundleError as e:
         raise EvaluationError(str(e)) from None
 
@@ -154,7 +154,7 @@ _SYNTH = None
 def _init_synthesizer(weights_dir, synth_cfg) -> None:
     global _SYNTH
     from ..synth import Synthesizer
-    # The synthesizer defines the weights' room types in this process (a worker too).
+    # One per process (a worker too); it knows the weights' room types (its vocabulary).
     _SYNTH = Synthesizer(weights_dir, synth_cfg)
     _SYNTH.load_all()           # so that no room's seconds include loading its bundle
 
@@ -233,12 +233,14 @@ def validity(groups: dict[str, Sequence[Scene]]) -> dict:
             for name, scenes in groups.items()}
 
 
-def rule_report(heldout: Sequence[Scene], synth: Sequence[Scene]) -> dict:
+def rule_report(heldout: Sequence[Scene], synth: Sequence[Scene],
+                vocabulary: Vocabulary = PAPER) -> dict:
     """Every design rule in the held-out rooms (the ``corpus`` side of the record) and in
-    the synthesized ones."""
+    the synthesized ones, whose categories are those of ``vocabulary``."""
     from .. import rules as design_rules
-    return design_rules.summarize([design_rules.measure(s) for s in heldout],
-                                  [design_rules.measure(s) for s in synth])
+    return design_rules.summarize(
+        [design_rules.measure(s, vocabulary=vocabulary) for s in heldout],
+        [design_rules.measure(s, vocabulary=vocabulary) for s in synth])
 
 
 def evaluate_data_room_type(split: Split, spec: RoomTypeSpec, cfg: DataEvalConfig,
@@ -272,7 +274,7 @@ def evaluate_data_room_type(split: Split, spec: RoomTypeSpec, cfg: DataEvalConfi
         'stage_seconds': stages,
     }
     stage('categories and validity')
-    res['design_rules'] = rule_report(split.heldout, synth)
+    res['design_rules'] = rule_report(split.heldout, synth, PAPER.with_specs([spec]))
     stage('design rules')
     return res
 
@@ -293,7 +295,7 @@ def run_data_evaluation(data_dir: str | Path, weights_dir: str | Path, room_type
     """Evaluate the weights of ``weights_dir`` against the held-out rooms of the imported
     data set ``data_dir`` and write ``out/index.md`` and ``out/results.json`` (and the
     Markdown to ``markdown_copy`` too). Raises ``EvaluationError`` for bad input before any
-    long computation. The weights' room types are defined only for the run."""
+    long computation. The room types and categories are those the weights were trained on."""
     import torch
 
     from . import dataset_report, speed
@@ -306,13 +308,14 @@ def run_data_evaluation(data_dir: str | Path, weights_dir: str | Path, room_type
     workers = max(1, int(workers))
     out = prepare_out_dir(out)
     threads = torch.get_num_threads()
+    try:
+        vocabulary = PAPER.with_specs(s for s in specs.values() if s is not None)
+    except RoomTypeConflict as e:
+        raise EvaluationError(f'{weights_dir}: {e}') from None
     with ExitStack() as stack:
-        try:
-            stack.enter_context(room_types_defined(s for s in specs.values() if s is not None))
-        except RoomTypeConflict as e:
-            raise EvaluationError(f'{weights_dir}: {e}') from None
         stack.callback(torch.set_num_threads, threads)
-        splits = {rt: load_split(data_dir, specs[rt], _train_config(weights_dir, rt),
+        splits = {rt: load_split(data_dir, specs[rt],
+                                 _train_config(weights_dir, rt, vocabulary),
                                  desc.room_types[rt].rooms) for rt in rts}
         results = {'mode': 'dataset', 'command': command, 'data_dir': str(data_dir),
                    'format': desc.format, 'weights_dir': str(weights_dir),

@@ -6,8 +6,8 @@ cast back to float32 on load), strings (the configuration, metrics and model lis
 and numbers. Nothing in it can execute code on load.
 
 A bundle trained on an imported data set carries its room type's category set
-(``RoomTypeSpec.to_dict``, JSON); loading it defines that room type in the process
-(``categories.define_room_types``). A bundle without one uses the paper's table.
+(``RoomTypeSpec.to_dict``, JSON); a weights directory's bundles make the vocabulary its
+networks know (``weights_vocabulary``). A bundle without one uses the paper's table.
 """
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ from typing import Any
 import torch
 from torch import nn
 
-from ..categories import RoomTypeSpec, define_room_types, resolve_room_type, room_spec
+from ..categories import PAPER, RoomTypeSpec, Vocabulary
 from ..errors import RoomTypeConflict, SceneSynthError
 from ..files import writing_together
 from ..render import num_channels
@@ -38,13 +38,13 @@ class BundleError(SceneSynthError):
     """A weights file that is missing, unreadable or does not match the code."""
 
 
-def build_networks(room_type: str, cfg: ModelConfig, seed: int | None = None
-                   ) -> dict[str, nn.Module]:
+def build_networks(room_type: str, cfg: ModelConfig, seed: int | None = None,
+                   vocabulary: Vocabulary = PAPER) -> dict[str, nn.Module]:
     """Freshly initialised networks of every module for ``room_type``. With ``seed``, each
     network's initial weights come from its own seed (``seed + k`` for the k-th module), so
     changing one module's architecture leaves the others' initialisation alone."""
-    rt = resolve_room_type(room_type)
-    ch, c = num_channels(rt), len(room_spec(rt).names)
+    rt = vocabulary.resolve(room_type)
+    ch, c = num_channels(rt, vocabulary), len(vocabulary.spec(rt).names)
     kinds = {'category': CategoryModel, 'location': LocationModel,
              'orientation': OrientationModel, 'snap': SnapModel,
              'dimensions': DimensionsModel}
@@ -77,9 +77,16 @@ class Bundle:
         least 1 so that it can divide."""
         return self.cooccurrence.diagonal().clamp_min(1.0)
 
+    @cached_property
+    def vocabulary(self) -> Vocabulary:
+        """What these networks know: the paper's table, with the data set's category set
+        of their room type when they were trained on one."""
+        return PAPER if self.spec is None else PAPER.with_specs([self.spec])
 
-def bundle_path(weights_dir: str | Path, room_type: str) -> Path:
-    return Path(weights_dir) / f'{resolve_room_type(room_type)}.pt'
+
+def bundle_path(weights_dir: str | Path, room_type: str,
+                vocabulary: Vocabulary = PAPER) -> Path:
+    return Path(weights_dir) / f'{vocabulary.resolve(room_type)}.pt'
 
 
 def save_bundle(bundle: Bundle, path: str | Path) -> None:
@@ -135,21 +142,19 @@ def _stored_spec(data: dict) -> RoomTypeSpec | None:
     return spec
 
 
-def define_weights_room_types(weights_dir: str | Path) -> list[str]:
-    """Define in this process the room types of the data sets that the bundles in
-    ``weights_dir`` were trained on (``categories.define_room_types``); the room types of
-    the directory's bundles, paper's and data sets' alike."""
-    specs = bundle_specs(weights_dir)
+def weights_vocabulary(weights_dir: str | Path) -> Vocabulary:
+    """What the networks in ``weights_dir`` know: the paper's table with the category sets
+    of the data sets their bundles were trained on. Reads no network."""
     try:
-        define_room_types(s for s in specs.values() if s is not None)
+        return PAPER.with_specs(s for s in bundle_specs(weights_dir).values() if s is not None)
     except RoomTypeConflict as e:
         raise BundleError(f'{weights_dir}: {e}') from None
-    return list(specs)
 
 
 def load_bundle(path: str | Path, device: str | torch.device = 'cpu') -> Bundle:
-    """The networks of one room type, in eval mode on ``device``. Raises ``BundleError``
-    naming the file and what is wrong with it."""
+    """The networks of one room type, in eval mode on ``device``, with the category set
+    they were trained on (``Bundle.vocabulary``). Raises ``BundleError`` naming the file and
+    what is wrong with it."""
     path = Path(path)
     if not path.is_file():
         raise BundleError(f'{path}: no such weights file')
@@ -163,10 +168,9 @@ def load_bundle(path: str | Path, device: str | torch.device = 'cpu') -> Bundle:
     try:
         cfg = PipelineConfig.from_dict(json.loads(data['config']))
         spec = _stored_spec(data)
-        if spec is not None:
-            define_room_types([spec])
-        rt = resolve_room_type(data['room_type'])
-        nets = build_networks(rt, cfg.model)
+        vocabulary = PAPER if spec is None else PAPER.with_specs([spec])
+        rt = vocabulary.resolve(data['room_type'])
+        nets = build_networks(rt, cfg.model, vocabulary=vocabulary)
         for name in NETWORKS:
             state = {k: (v.float() if v.is_floating_point() else v)
                      for k, v in data[name].items()}
@@ -174,8 +178,6 @@ def load_bundle(path: str | Path, device: str | torch.device = 'cpu') -> Bundle:
             nets[name].to(device).eval()
         return Bundle(rt, cfg, nets, data['cooccurrence'].float(), json.loads(data['models']),
                       json.loads(data.get('metrics', '{}')), spec)
-    except RoomTypeConflict as e:
-        raise BundleError(f'{path}: {e}') from None
     except (KeyError, ValueError, RuntimeError, TypeError) as e:
         raise BundleError(f'{path}: weights do not match the networks of this version '
                           f'({type(e).__name__}: {str(e).splitlines()[0]})') from None

@@ -15,7 +15,7 @@ import math
 import numpy as np
 import torch
 
-from ..categories import resolve_room_type, room_spec
+from ..categories import PAPER, Vocabulary
 from ..render import Frame, TopDownRenderer
 from ..scene import Opening, PlacedObject, Room, Scene, wrap_angle
 from . import NETWORKS
@@ -57,11 +57,12 @@ def rotate_scene(scene: Scene, k: int) -> Scene:
 
 
 # ---- ordering -----------------------------------------------------------------------------
-def insertion_order(scene: Scene, rng: np.random.Generator, by_importance: bool
-                    ) -> list[PlacedObject]:
+def insertion_order(scene: Scene, rng: np.random.Generator, by_importance: bool,
+                    vocabulary: Vocabulary = PAPER) -> list[PlacedObject]:
     """The objects in the order the pipeline would insert them (see the module docstring);
-    ties in importance are broken at random."""
-    spec = room_spec(scene.room.room_type)
+    ties in importance are broken at random. The room type's importance order is that of
+    ``vocabulary``."""
+    spec = vocabulary.spec(scene.room.room_type)
     rank = {name: k for k, name in enumerate(spec.importance_order())}
     out = []
     for tier in (scene.first_tier, scene.second_tier):
@@ -84,12 +85,15 @@ def placeable(removed: list[PlacedObject], kept: list[PlacedObject]) -> list[Pla
 # ---- examples -----------------------------------------------------------------------------
 class ExampleSource:
     """Makes batches of training examples for each module from a list of furnished rooms of
-    one type. A batch is a pure function of its seed, so a resumed run sees the same data."""
+    one type. A batch is a pure function of its seed, so a resumed run sees the same data.
+    The room type's categories are those of ``vocabulary`` (a data set's, or the paper's)."""
 
     def __init__(self, room_type: str, scenes: list[Scene], resolution: int,
-                 location_resolution: int, augment: bool = True, target_radius: int = 0):
-        self.room_type = resolve_room_type(room_type)
-        self.spec = room_spec(self.room_type)
+                 location_resolution: int, augment: bool = True, target_radius: int = 0,
+                 vocabulary: Vocabulary = PAPER):
+        self.vocabulary = vocabulary
+        self.room_type = vocabulary.resolve(room_type)
+        self.spec = vocabulary.spec(self.room_type)
         self.index = {n: k for k, n in enumerate(self.spec.names)}
         # An empty room teaches only STOP, and has no object to orient or size.
         self.scenes = [s for s in scenes if s.objects]
@@ -99,7 +103,7 @@ class ExampleSource:
         self.location_resolution = location_resolution
         self.augment = augment
         self.target_radius = target_radius
-        self.renderer = TopDownRenderer(resolution, cache_size=64)
+        self.renderer = TopDownRenderer(resolution, cache_size=64, vocabulary=vocabulary)
         # A room of N objects is N + 1 states of the sequential model (0 ... N objects
         # placed); drawing rooms in proportion to that draws states as synthesis meets them.
         states = np.array([len(s.objects) + 1 for s in self.scenes], dtype=float)
@@ -138,19 +142,22 @@ class ExampleSource:
         # overweighting complete small rooms and so teaching STOP too early
         # (docs/design/investigations.md).
         scene = self._scene(rng, per_state=True)
-        order = insertion_order(scene, rng, by_importance=True)
+        order = insertion_order(scene, rng, by_importance=True,
+                                vocabulary=self.vocabulary)
         k = int(rng.integers(len(order) + 1))
         part = Scene(scene.room, order[:k])
-        image = self.renderer.render(part, Frame.for_room(scene.room, self.resolution))
+        image = self.renderer.render(part, Frame.for_room(scene.room, self.resolution,
+                                                          self.vocabulary))
         target = self.index[order[k].category] if k < len(order) else self.num_categories
         return image, self.counts(order[:k]), target
 
     def location_example(self, rng):
         scene = self._scene(rng)
-        order = insertion_order(scene, rng, by_importance=False)
+        order = insertion_order(scene, rng, by_importance=False,
+                                vocabulary=self.vocabulary)
         k = int(rng.integers(len(order) + 1))
         kept, removed = order[:k], order[k:]
-        frame = Frame.for_room(scene.room, self.resolution)
+        frame = Frame.for_room(scene.room, self.resolution, self.vocabulary)
         image = self.renderer.render(Scene(scene.room, kept), frame)
         target, offset = self.location_target(frame, placeable(removed, kept))
         return image, target, offset
@@ -179,7 +186,8 @@ class ExampleSource:
     def _target_object(self, rng):
         """A partial scene and one object that could be inserted into it next."""
         scene = self._scene(rng)
-        order = insertion_order(scene, rng, by_importance=False)
+        order = insertion_order(scene, rng, by_importance=False,
+                                vocabulary=self.vocabulary)
         k = int(rng.integers(len(order)))
         kept, removed = order[:k], order[k:]
         cands = placeable(removed, kept)
@@ -187,16 +195,16 @@ class ExampleSource:
 
     def orientation_example(self, rng):
         part, obj = self._target_object(rng)
-        frame = Frame.for_room(part.room, self.resolution)
+        frame = Frame.for_room(part.room, self.resolution, self.vocabulary)
         image = self.renderer.render(part, Frame.local(self.room_type, obj.position, frame.yaw,
-                                                       self.resolution))
+                                                       self.resolution, self.vocabulary))
         theta = wrap_angle(obj.yaw - frame.yaw)
         return image, self.index[obj.category], theta
 
     def dimensions_example(self, rng):
         part, obj = self._target_object(rng)
         image = self.renderer.render(part, Frame.local(self.room_type, obj.position, obj.yaw,
-                                                       self.resolution))
+                                                       self.resolution, self.vocabulary))
         return image, self.index[obj.category], (math.log(obj.depth), math.log(obj.width))
 
     # Batches as tensors.

@@ -18,13 +18,7 @@ import torch
 from torch import nn
 
 from ..catalog import variants
-from ..categories import (
-    define_room_types,
-    defined_room_type,
-    resolve_room_type,
-    room_spec,
-    room_types,
-)
+from ..categories import PAPER, Vocabulary
 from ..corpus.generate import generate_corpus
 from ..files import writing_together
 from ..scene import Scene
@@ -52,6 +46,15 @@ class RoomCorpus:
     val: list[Scene]
 
 
+def data_vocabulary(data_dir: Path | None) -> Vocabulary:
+    """What the rooms of ``data_dir``, an imported data set, know: the paper's table with the
+    data set's category sets; the paper's alone without one."""
+    if data_dir is None:
+        return PAPER
+    from ..datasets.training import describe_dir, room_type_specs
+    return PAPER.with_specs(room_type_specs(describe_dir(data_dir)).values())
+
+
 def load_corpus(room_type: str, cfg: PipelineConfig, workers: int | None = None,
                 data_dir: Path | None = None) -> RoomCorpus:
     """Training rooms 0..N-1 and held-out rooms N..N+V-1 of the corpus seed; with
@@ -60,17 +63,19 @@ def load_corpus(room_type: str, cfg: PipelineConfig, workers: int | None = None,
     t = cfg.train
     if data_dir is not None:
         from ..datasets.training import split_rooms
-        data = split_rooms(data_dir, room_spec(room_type), t.corpus_seed, t.train_rooms,
-                           t.val_rooms)
+        data = split_rooms(data_dir, data_vocabulary(data_dir).spec(room_type), t.corpus_seed,
+                           t.train_rooms, t.val_rooms)
         return RoomCorpus(data.train, data.held_out)
     rooms = list(generate_corpus(room_type, t.train_rooms + t.val_rooms, seed=t.corpus_seed,
                                  workers=workers))
     return RoomCorpus(rooms[:t.train_rooms], rooms[t.train_rooms:])
 
 
-def model_cooccurrence(room_type: str, scenes: list[Scene]) -> tuple[list[str], torch.Tensor]:
+def model_cooccurrence(room_type: str, scenes: list[Scene], vocabulary: Vocabulary = PAPER
+                       ) -> tuple[list[str], torch.Tensor]:
     """How often each pair of catalog models appears in the same training room."""
-    models = [v.model_id for c in room_spec(room_type).names for v in variants(c, room_type)]
+    models = [v.model_id for c in vocabulary.spec(room_type).names
+              for v in variants(c, room_type, vocabulary)]
     index = {m: k for k, m in enumerate(models)}
     counts = torch.zeros(len(models), len(models))
     for s in scenes:
@@ -313,7 +318,8 @@ def component_table(nets: dict[str, nn.Module], val: ExampleSource, cfg: Pipelin
                     room_type: str) -> dict[str, dict[str, float]]:
     """The paper's component metrics on held-out rooms, for the given networks and for
     freshly initialised ones of the same shape (seeded)."""
-    fresh = build_networks(room_type, cfg.model, seed=cfg.train.seed + 1000)
+    fresh = build_networks(room_type, cfg.model, seed=cfg.train.seed + 1000,
+                           vocabulary=val.vocabulary)
     out: dict[str, dict[str, float]] = {}
     for name in NETWORKS:
         for label, net in (('trained', nets[name]), ('random', fresh[name])):
@@ -335,10 +341,10 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
     final run over all modules (each resuming at its end) exports the bundle. With
     ``others_from``, a directory of bundles made with the same model configuration, the
     modules not trained are taken from its bundle and the result is exported: one module
-    retrained, the others kept. With ``data_dir`` (an imported data set whose room types are
-    defined, see ``train``) the rooms are the data set's and the bundle carries its room
-    type's category set."""
-    rt = resolve_room_type(room_type)
+    retrained, the others kept. With ``data_dir`` (an imported data set, see ``train``) the
+    rooms and category sets are the data set's and the bundle carries its room type's."""
+    vocabulary = data_vocabulary(data_dir)
+    rt = vocabulary.resolve(room_type)
     device = resolve_device(cfg.device)
     t = cfg.train
     if t.threads:
@@ -361,12 +367,12 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
              f'{data_dir}')
     m = cfg.model
     source = ExampleSource(rt, corpus.train, m.resolution, m.location_resolution,
-                           target_radius=t.location_target_radius)
+                           target_radius=t.location_target_radius, vocabulary=vocabulary)
     val = ExampleSource(rt, corpus.val, m.resolution, m.location_resolution,
-                        target_radius=t.location_target_radius)
-    nets = build_networks(rt, m, seed=t.seed)
+                        target_radius=t.location_target_radius, vocabulary=vocabulary)
+    nets = build_networks(rt, m, seed=t.seed, vocabulary=vocabulary)
     if others_from is not None:
-        _take_networks(nets, bundle_path(others_from, rt), m,
+        _take_networks(nets, bundle_path(others_from, rt, vocabulary), m,
                        [n for n in NETWORKS if n not in modules])
     final: dict[str, dict[str, float]] = {}
     for name in NETWORKS:
@@ -380,9 +386,9 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
         echo(f'{rt}: trained {", ".join(modules)}; run again over all modules to export')
         return None
     table = component_table(nets, val, cfg, device, rt)
-    models, co = model_cooccurrence(rt, corpus.train)
+    models, co = model_cooccurrence(rt, corpus.train, vocabulary)
     bundle = Bundle(rt, cfg, nets, co, models, {'components': table},
-                    room_spec(rt) if defined_room_type(rt) else None)
+                    vocabulary.spec(rt) if vocabulary.defines(rt) else None)
     for net in nets.values():
         net.to('cpu')
     out = Path(weights_dir) / f'{rt}.pt'
@@ -436,23 +442,23 @@ def train(types: list[str] | None, cfg: PipelineConfig, run_root: Path, weights_
           others_from: Path | None = None,
           data_dir: Path | None = None) -> dict[str, Bundle | None]:
     """Train each of ``types`` (None: the paper's four, or with ``data_dir`` every room type
-    of the imported data set there, whose category sets it defines in this process)."""
+    of the imported data set there, on the category sets it describes)."""
     unknown = sorted(set(modules) - set(NETWORKS))
     if unknown:
         raise ValueError(f'unknown module {unknown[0]!r}; expected some of {", ".join(NETWORKS)}')
     if data_dir is not None:
         from ..datasets.training import describe_dir, room_type_specs
         specs = room_type_specs(describe_dir(data_dir))
-        define_room_types(specs.values())
         if types is None:
             types = list(specs)
         missing = [rt for rt in types if rt not in specs]
         if missing:
             raise ValueError(f'{data_dir} holds no {missing[0]} rooms; its room types are '
                              f'{", ".join(specs)}')
+    known = data_vocabulary(data_dir).room_types
     out = {}
-    for rt in types if types is not None else list(room_types()):
-        if rt not in room_types():
+    for rt in types if types is not None else list(known):
+        if rt not in known:
             raise ValueError(f'unknown room type {rt!r}')
         out[rt] = train_room_type(rt, cfg, run_root, weights_dir, progress, echo, modules,
                                   others_from, data_dir)

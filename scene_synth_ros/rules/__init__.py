@@ -24,6 +24,7 @@ from __future__ import annotations
 
 from typing import Iterable, Sequence
 
+from ..categories import PAPER, Vocabulary
 from ..scene import Scene
 from . import access, groups, walls
 from .rule import BEDS, Comparison, Outcome, Rate, Rule, category_of, two_proportion_p
@@ -40,14 +41,17 @@ def rules() -> tuple[Rule, ...]:
     return RULES
 
 
-def measure(scene: Scene, selected: Sequence[Rule] | None = None) -> dict[str, Outcome]:
-    """Every rule's outcome in one room."""
-    return {r.name: r.measure(scene) for r in (selected or rules())}
+def measure(scene: Scene, selected: Sequence[Rule] | None = None,
+            vocabulary: Vocabulary = PAPER) -> dict[str, Outcome]:
+    """Every rule's outcome in one room, whose categories are those of ``vocabulary``."""
+    return {r.name: r.outcome(scene, vocabulary) for r in (selected or rules())}
 
 
-def broken(scene: Scene, selected: Sequence[Rule] | None = None) -> list[str]:
+def broken(scene: Scene, selected: Sequence[Rule] | None = None,
+           vocabulary: Vocabulary = PAPER) -> list[str]:
     """The names of the rules the room breaks in at least one case."""
-    return [name for name, (kept, cases) in measure(scene, selected).items() if kept < cases]
+    return [name for name, (kept, cases) in measure(scene, selected, vocabulary).items()
+            if kept < cases]
 
 
 def totals(rows: Iterable[dict[str, Outcome]], selected: Sequence[Rule]) -> dict[str, Rate]:

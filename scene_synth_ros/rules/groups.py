@@ -66,7 +66,7 @@ import numpy as np
 import shapely
 from shapely.geometry import LineString, Polygon
 
-from ..categories import CATEGORIES, members
+from ..categories import CATEGORIES, PAPER, Vocabulary, members
 from ..geometry import local_xy, nearest_point, within_reach
 from ..scene import PlacedObject, Scene, wrap_angle
 from ..thresholds import (
@@ -211,7 +211,7 @@ def _box(obj: PlacedObject, x0: float, x1: float, y0: float, y1: float) -> Polyg
                     for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))])
 
 
-def partner_zone(scene: Scene, rule: str, category: str):
+def partner_zone(scene: Scene, rule: str, category: str, vocabulary: Vocabulary = PAPER):
     """Where the centre of a new first-tier ``category`` piece can stand for ``rule`` (one
     of ``PARTNER_RULES``) to hold for it, given the partners in ``scene``: a shapely
     geometry, empty when the room holds no partner; None when the rule does not ask anything
@@ -220,7 +220,7 @@ def partner_zone(scene: Scene, rule: str, category: str):
     if category not in PARTNER_RULES.get(rule, ()):
         return None
     # The room type's own sizes: a data set's coffee table is not the paper's.
-    info = category_of(category, scene.room.room_type) or CATEGORIES[category]
+    info = category_of(category, scene.room.room_type, vocabulary) or CATEGORIES[category]
     m = max(info.width[1], info.depth[1]) / 2
     boxes = []
     if rule == 'chair_at_table':

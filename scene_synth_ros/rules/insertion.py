@@ -3,6 +3,8 @@ the function that gives a scene's verdicts case by case, and which insertions ca
 """
 from __future__ import annotations
 
+from ..categories import PAPER, Vocabulary
+from ..scene import PlacedObject, Scene
 from . import access, groups, walls
 
 # Design rules insertion can keep: each gives, for a scene, whether each of its cases (a
@@ -36,10 +38,28 @@ RULE_CATEGORIES: dict[str, frozenset[str]] = {
     'coffee_table_has_seating': frozenset(('coffee table',) + groups.LOUNGE_SEATS),
 }
 
-def rule_categories(rule: str, room_type: str) -> frozenset[str] | None:
+def rule_categories(rule: str, room_type: str, vocabulary: Vocabulary = PAPER
+                    ) -> frozenset[str] | None:
     """The categories whose insertion can change ``rule``'s verdicts in a room of
-    ``room_type`` (None: any). Wall furniture is the room type's own: a data set says which
-    of its categories stand against a wall."""
+    ``room_type`` (None: any). Wall furniture is the room type's own in ``vocabulary``: a
+    data set says which of its categories stand against a wall."""
     if rule == 'wall_contact':
-        return walls.wall_categories(room_type)[0]
+        return walls.wall_categories(room_type, vocabulary)[0]
     return RULE_CATEGORIES.get(rule)
+
+
+# Rules whose verdicts read the room type's category set (which pieces stand against a wall).
+VOCABULARY_RULES = frozenset({'wall_contact'})
+
+
+def verdicts(rule: str, scene: Scene, vocabulary: Vocabulary = PAPER,
+             new: PlacedObject | None = None) -> dict:
+    """``rule``'s verdict on each of its cases in ``scene`` (``INSERTION_RULES``), whose
+    categories are those of ``vocabulary``; with ``new``, for an incremental rule, only the
+    cases the newly placed ``new`` can change."""
+    kw: dict = {}
+    if new is not None and rule in INCREMENTAL_RULES:
+        kw['new'] = new
+    if rule in VOCABULARY_RULES:
+        kw['vocabulary'] = vocabulary
+    return INSERTION_RULES[rule](scene, **kw)

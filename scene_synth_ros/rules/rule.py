@@ -5,7 +5,7 @@ from dataclasses import dataclass
 import math
 from typing import Callable
 
-from ..categories import CategoryInfo, category_info, members
+from ..categories import PAPER, CategoryInfo, Vocabulary, members
 from ..errors import UnknownRoomType
 from ..scene import Scene
 
@@ -15,16 +15,17 @@ Outcome = tuple[int, int]          # (cases that keep the rule, cases) in one ro
 BEDS = members('bed')
 
 
-def category_of(name: str, room_type: str) -> CategoryInfo | None:
+def category_of(name: str, room_type: str, vocabulary: Vocabulary = PAPER
+                ) -> CategoryInfo | None:
     """What is known of category ``name`` in a room of ``room_type``: the room type's own
-    category set first (a data set's categories, sizes and wall flags live there), then the
-    paper's table; None when neither knows it. For the paper's room types this is
-    ``categories.CATEGORIES[name]``."""
+    category set in ``vocabulary`` first (a data set's categories, sizes and wall flags live
+    there), then the paper's table; None when neither knows it. For the paper's room types
+    this is ``categories.CATEGORIES[name]``."""
     try:
         try:
-            return category_info(name, room_type)
-        except UnknownRoomType:     # a room of a type this process does not define
-            return category_info(name)
+            return vocabulary.info(name, room_type)
+        except UnknownRoomType:     # a room of a type the vocabulary does not know
+            return vocabulary.info(name)
     except KeyError:
         return None
 
@@ -36,7 +37,17 @@ class Rule:
     name: str                              # short identifier, e.g. 'wall_contact'
     family: str                            # 'walls', 'groups' or 'access'
     question: str                          # one sentence: the case and what "yes" means
-    measure: Callable[[Scene], Outcome]
+    measure: Callable[..., Outcome]
+    # Whether ``measure`` reads the room type's category set: it then takes the vocabulary
+    # the room's categories belong to (``outcome``).
+    reads_vocabulary: bool = False
+
+    def outcome(self, scene: Scene, vocabulary: Vocabulary = PAPER) -> Outcome:
+        """``measure(scene)``, with the categories of ``vocabulary`` where the rule reads
+        them."""
+        if self.reads_vocabulary:
+            return self.measure(scene, vocabulary)
+        return self.measure(scene)
 
 
 @dataclass(frozen=True)

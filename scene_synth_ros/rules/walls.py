@@ -55,7 +55,7 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon
 
-from ..categories import CATEGORIES, RoomTypeSpec, members, room_spec
+from ..categories import CATEGORIES, PAPER, RoomTypeSpec, Vocabulary, members
 from ..errors import UnknownRoomType
 from ..scene import Opening, PlacedObject, Room, Scene, Wall, box_corners
 from ..thresholds import (
@@ -84,12 +84,13 @@ LARGE_PIECES = frozenset(c for c in WALL_FURNITURE
 _WALL_SETS: dict[int, tuple[RoomTypeSpec, frozenset[str], frozenset[str]]] = {}
 
 
-def wall_categories(room_type: str) -> tuple[frozenset[str], frozenset[str]]:
+def wall_categories(room_type: str, vocabulary: Vocabulary = PAPER
+                    ) -> tuple[frozenset[str], frozenset[str]]:
     """The wall furniture and the large pieces among it in a room of ``room_type``: by the
-    room type's category set for its categories, by the paper's table for the others
-    (``design_rules.category_of``); the paper's sets for a room type not known here."""
+    room type's category set in ``vocabulary`` for its categories, by the paper's table for
+    the others (``rules.category_of``); the paper's sets for a room type it does not know."""
     try:
-        spec = room_spec(room_type)
+        spec = vocabulary.spec(room_type)
     except UnknownRoomType:
         return WALL_FURNITURE, LARGE_PIECES
     hit = _WALL_SETS.get(id(spec))
@@ -187,28 +188,29 @@ def union_length(intervals: list[tuple[float, float]]) -> float:
 
 
 # ---- the rules ---------------------------------------------------------------------------
-def _back_gaps(scene: Scene) -> tuple[list[PlacedObject], np.ndarray]:
+def _back_gaps(scene: Scene, vocabulary: Vocabulary = PAPER
+               ) -> tuple[list[PlacedObject], np.ndarray]:
     """The room's pieces of wall furniture and each one's back gap."""
-    wall, _ = wall_categories(scene.room.room_type)
+    wall, _ = wall_categories(scene.room.room_type, vocabulary)
     pieces = [o for o in scene.first_tier if o.category in wall]
     if not pieces:
         return pieces, np.zeros(0)
     return pieces, back_gaps(pieces, wall_runs(scene.room))
 
 
-def wall_contact_verdicts(scene: Scene) -> dict[str, bool]:
+def wall_contact_verdicts(scene: Scene, vocabulary: Vocabulary = PAPER) -> dict[str, bool]:
     """Whether each piece of wall furniture (by id) keeps ``wall_contact``."""
-    pieces, gaps = _back_gaps(scene)
+    pieces, gaps = _back_gaps(scene, vocabulary)
     return {o.id: bool(g <= WALL_CONTACT_GAP) for o, g in zip(pieces, gaps, strict=True)}
 
 
-def measure_wall_contact(scene: Scene) -> tuple[int, int]:
-    verdicts = wall_contact_verdicts(scene)
+def measure_wall_contact(scene: Scene, vocabulary: Vocabulary = PAPER) -> tuple[int, int]:
+    verdicts = wall_contact_verdicts(scene, vocabulary)
     return sum(verdicts.values()), len(verdicts)
 
 
-def measure_wall_near_miss(scene: Scene) -> tuple[int, int]:
-    _, gaps = _back_gaps(scene)
+def measure_wall_near_miss(scene: Scene, vocabulary: Vocabulary = PAPER) -> tuple[int, int]:
+    _, gaps = _back_gaps(scene, vocabulary)
     return int(np.sum((gaps <= WALL_CONTACT_GAP) | (gaps >= NEAR_MISS))), len(gaps)
 
 
@@ -221,10 +223,10 @@ def is_partner(piece: PlacedObject, other: PlacedObject) -> bool:
                 and bearing(other, piece) > GROUPED_SEAT_FACING)
 
 
-def floating(scene: Scene) -> list[PlacedObject]:
+def floating(scene: Scene, vocabulary: Vocabulary = PAPER) -> list[PlacedObject]:
     """The large pieces off every wall and away from every partner."""
     first = scene.first_tier
-    _, pieces = wall_categories(scene.room.room_type)
+    _, pieces = wall_categories(scene.room.room_type, vocabulary)
     large = [k for k, o in enumerate(first) if o.category in pieces]
     if not large:
         return []
@@ -238,10 +240,10 @@ def floating(scene: Scene) -> list[PlacedObject]:
     return out
 
 
-def measure_floating(scene: Scene) -> tuple[int, int]:
-    _, pieces = wall_categories(scene.room.room_type)
+def measure_floating(scene: Scene, vocabulary: Vocabulary = PAPER) -> tuple[int, int]:
+    _, pieces = wall_categories(scene.room.room_type, vocabulary)
     cases = sum(o.category in pieces for o in scene.first_tier)
-    return cases - len(floating(scene)), cases
+    return cases - len(floating(scene, vocabulary)), cases
 
 
 def covered_width(window: Opening, wall: Wall, zone: Polygon,
@@ -318,19 +320,19 @@ RULES: tuple[Rule, ...] = (
     Rule('wall_contact', 'walls',
          'Each piece of wall furniture (a first-tier category meant to stand against a wall) has '
          f'both back corners within {WALL_CONTACT_GAP * 100:.0f} cm of the same wall.',
-         measure_wall_contact),
+         measure_wall_contact, reads_vocabulary=True),
     Rule('wall_near_miss', 'walls',
          'Each piece of wall furniture has its back either within '
          f'{WALL_CONTACT_GAP * 100:.0f} cm of a wall or at least {NEAR_MISS * 100:.0f} cm from '
          'every wall, not a near miss in between.',
-         measure_wall_near_miss),
+         measure_wall_near_miss, reads_vocabulary=True),
     Rule('no_floating_large_pieces', 'walls',
          'Each large piece of wall furniture (a wall category of '
          f'{LARGE_FOOTPRINT:.2f} m^2 or more: beds, sofas, storage, desks, TV stands, pianos, '
          'fireplaces, baths, showers, sinks, washers) stands within '
          f'{FLOAT_WALL_GAP * 100:.0f} cm of a wall or {GROUP_GAP * 100:.0f} cm of a partner '
          '(a seat turned to its desk, a nightstand by its bed, a coffee table by its sofa).',
-         measure_floating),
+         measure_floating, reads_vocabulary=True),
     Rule('windows_clear', 'walls',
          f'Each window has at most {WINDOW_SHARE:.0%} of its width hidden by first-tier '
          f'furniture taller than its sill standing within {WINDOW_ZONE_DEPTH * 100:.0f} cm of '

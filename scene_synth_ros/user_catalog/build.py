@@ -7,7 +7,7 @@ from pathlib import Path
 
 from .. import catalog
 from ..catalog import Catalog, UserModel
-from ..categories import CATEGORIES
+from ..categories import CATEGORIES, PAPER, Vocabulary
 from ..errors import number, quoted, sentence
 from .measure import measure
 from .sources import find_specs
@@ -38,10 +38,11 @@ class BuildReport:
 
 
 def build_catalog(folder: str | Path, manifest: str | Path | None = None,
-                  category_map: str | Path | None = None) -> BuildReport:
-    """Measure every model ``folder`` offers (``sources.find_specs``). Raises
-    ``CatalogError`` only when nothing can be read at all."""
-    specs, lines = find_specs(folder, manifest, category_map)
+                  category_map: str | Path | None = None, vocabulary: Vocabulary = PAPER
+                  ) -> BuildReport:
+    """Measure every model ``folder`` offers (``sources.find_specs``), of the categories of
+    ``vocabulary``. Raises ``CatalogError`` only when nothing can be read at all."""
+    specs, lines = find_specs(folder, manifest, category_map, vocabulary)
     report = BuildReport(lines=[sentence(line) for line in lines])
     taken: dict[str, str] = {}
     for spec in specs:
@@ -51,14 +52,14 @@ def build_catalog(folder: str | Path, manifest: str | Path | None = None,
                                          f'{quoted(taken[spec.model_id], 60)}\'s'))
             continue
         try:
-            catalog.get(spec.model_id)
+            catalog.get(spec.model_id, vocabulary)
         except KeyError:
             pass
         else:
             report.lines.append(sentence(f'{where}: its id {quoted(spec.model_id)} is a '
                                          f'procedural model\'s; give it another id'))
             continue
-        model = measure(spec)
+        model = measure(spec, vocabulary)
         if isinstance(model, str):
             report.lines.append(sentence(f'{where}: {model}'))
             continue

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from ..catalog import UserModel
-from ..categories import category_info
+from ..categories import PAPER, Vocabulary
 from ..errors import number
 from ..meshes.user import load_triangles
 from .axes import parse_axis, to_package_frame
@@ -44,7 +44,7 @@ def _file_problem(path: Path) -> str | None:
     return None
 
 
-def measure(spec: ModelSpec) -> UserModel | str:
+def measure(spec: ModelSpec, vocabulary: Vocabulary = PAPER) -> UserModel | str:
     """The model of ``spec``, measured; or what is wrong with it, as a report clause."""
     problem = _file_problem(spec.file)
     if problem:
@@ -65,7 +65,7 @@ def measure(spec: ModelSpec) -> UserModel | str:
     if min(depth, width, height) < MIN_EXTENT:
         return (f'its box is flat ({_size(width, depth, height)}): a model needs volume '
                 f'(is its scale right?)')
-    problem = _implausible(spec, width, depth, height)
+    problem = _implausible(spec, width, depth, height, vocabulary)
     if problem:
         return problem
     offset = tuple(round(float(v), 6) + 0.0 for v in (-(lo[0] + hi[0]) / 2,
@@ -79,10 +79,11 @@ def _size(w: float, d: float, h: float) -> str:
     return f'{number(w)} x {number(d)} x {number(h)} m'
 
 
-def _implausible(spec: ModelSpec, w: float, d: float, h: float) -> str | None:
+def _implausible(spec: ModelSpec, w: float, d: float, h: float,
+                 vocabulary: Vocabulary = PAPER) -> str | None:
     """Why (width, depth, height) is implausible for the category, with a hint at the
     likely mistake (units, a front along the wrong axis), or None."""
-    info = category_info(spec.category)
+    info = vocabulary.info(spec.category)
     if info.size_is_plausible(w, d, h):
         return None
     # The ranges as ``size_is_plausible`` widens them by default (by half).

@@ -23,6 +23,7 @@ from typing import Any
 
 import yaml
 
+from ..categories import PAPER, Vocabulary
 from ..datasets.models import ModelCategories
 from ..errors import CatalogError, DatasetError, quoted
 from .spec import MESH_SUFFIXES, ModelSpec, category_of, make_spec
@@ -35,18 +36,20 @@ FUTURE_MAP = Path(__file__).with_name('future_categories.yaml')
 
 
 def find_specs(folder: str | Path, manifest: str | Path | None = None,
-               category_map: str | Path | None = None) -> tuple[list[ModelSpec], list[str]]:
-    """The models of ``folder`` and the report lines of those skipped."""
+               category_map: str | Path | None = None, vocabulary: Vocabulary = PAPER
+               ) -> tuple[list[ModelSpec], list[str]]:
+    """The models of ``folder`` and the report lines of those skipped; their categories are
+    those of ``vocabulary``."""
     folder = Path(folder)
     if not folder.is_dir():
         raise CatalogError(f'the model folder {quoted(str(folder), 80)} does not exist')
     if manifest is None:
         manifest = next((folder / n for n in MANIFEST_NAMES if (folder / n).is_file()), None)
     if manifest is not None:
-        return read_manifest(Path(manifest), folder)
+        return read_manifest(Path(manifest), folder, vocabulary)
     if (folder / FUTURE_INFO).is_file():
-        return read_future(folder, category_map)
-    return read_category_folders(folder)
+        return read_future(folder, category_map, vocabulary)
+    return read_category_folders(folder, vocabulary)
 
 
 def _yaml(path: Path, what: str) -> Any:
@@ -64,7 +67,8 @@ def _yaml(path: Path, what: str) -> Any:
                            f'JSON{where}') from None
 
 
-def read_manifest(path: Path, folder: Path) -> tuple[list[ModelSpec], list[str]]:
+def read_manifest(path: Path, folder: Path, vocabulary: Vocabulary = PAPER
+                  ) -> tuple[list[ModelSpec], list[str]]:
     data = _yaml(path, 'manifest')
     if isinstance(data, list):
         data = {'models': data}
@@ -86,7 +90,7 @@ def read_manifest(path: Path, folder: Path) -> tuple[list[ModelSpec], list[str]]
         if not isinstance(entry, dict):
             lines.append(f'{where}: not a mapping with file and category')
             continue
-        spec = make_spec(entry, folder, defaults)
+        spec = make_spec(entry, folder, defaults, vocabulary)
         if isinstance(spec, str):
             name = entry.get('file') if isinstance(entry.get('file'), str) else ''
             lines.append(f'{where} {quoted(name, 60)}: {spec}' if name else f'{where}: {spec}')
@@ -95,7 +99,8 @@ def read_manifest(path: Path, folder: Path) -> tuple[list[ModelSpec], list[str]]
     return specs, lines
 
 
-def future_mapping(path: str | Path | None = None) -> dict[str, str | None]:
+def future_mapping(path: str | Path | None = None, vocabulary: Vocabulary = PAPER
+                   ) -> dict[str, str | None]:
     """3D-FUTURE category (lower case) -> our category, or None for one we drop."""
     path = Path(path) if path is not None else FUTURE_MAP
     data = _yaml(path, 'category map')
@@ -104,7 +109,7 @@ def future_mapping(path: str | Path | None = None) -> dict[str, str | None]:
                            f'categories to ours (or to null)')
     out: dict[str, str | None] = {}
     for theirs, ours in data.items():
-        mapped = category_of(ours)
+        mapped = category_of(ours, vocabulary)
         if ours is not None and mapped is None:
             raise CatalogError(f'the category map {quoted(str(path), 80)} maps '
                                f'{quoted(str(theirs))} to {quoted(ours)}, which is not a '
@@ -113,15 +118,15 @@ def future_mapping(path: str | Path | None = None) -> dict[str, str | None]:
     return out
 
 
-def read_future(folder: Path, category_map: str | Path | None = None
-                ) -> tuple[list[ModelSpec], list[str]]:
+def read_future(folder: Path, category_map: str | Path | None = None,
+                vocabulary: Vocabulary = PAPER) -> tuple[list[ModelSpec], list[str]]:
     """The 3D-FUTURE models present in ``folder`` (its ``model_info.json`` may list many
     more: those are counted in one line, not one line each)."""
     try:
         table = ModelCategories(folder / FUTURE_INFO).table
     except DatasetError as e:
         raise CatalogError(str(e)) from None
-    mapping = future_mapping(category_map)
+    mapping = future_mapping(category_map, vocabulary)
     specs, lines = [], []
     absent, nameless, unmapped, unknown = 0, 0, Counter(), Counter()
     for model_id, entry in table.items():
@@ -139,7 +144,7 @@ def read_future(folder: Path, category_map: str | Path | None = None
             unmapped[entry.category] += 1
             continue
         spec = make_spec({'file': f'{model_id}/{FUTURE_MESH}', 'category': mapping[theirs],
-                          'id': model_id}, folder, FUTURE_AXES)
+                          'id': model_id}, folder, FUTURE_AXES, vocabulary)
         if isinstance(spec, str):
             lines.append(f'{model_id}: {spec}')
         else:
@@ -159,11 +164,12 @@ def read_future(folder: Path, category_map: str | Path | None = None
     return specs, lines
 
 
-def read_category_folders(folder: Path) -> tuple[list[ModelSpec], list[str]]:
+def read_category_folders(folder: Path, vocabulary: Vocabulary = PAPER
+                          ) -> tuple[list[ModelSpec], list[str]]:
     """Every mesh file in a sub-folder named after a category, with the format's axes."""
     specs, lines = [], []
     for d in sorted(p for p in folder.iterdir() if p.is_dir()):
-        category = category_of(d.name)
+        category = category_of(d.name, vocabulary)
         files = sorted(p for p in d.rglob('*') if p.suffix.lower() in MESH_SUFFIXES)
         if category is None:
             if files:
@@ -172,7 +178,7 @@ def read_category_folders(folder: Path) -> tuple[list[ModelSpec], list[str]]:
             continue
         for f in files:
             spec = make_spec({'file': f.relative_to(folder).as_posix(), 'category': category},
-                             folder, {})
+                             folder, {}, vocabulary)
             (lines.append(f'{f.relative_to(folder)}: {spec}') if isinstance(spec, str)
              else specs.append(spec))
     if not specs and not lines:

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ..categories import category_info
+from ..categories import PAPER, Vocabulary
 from ..errors import quoted
 from .axes import parse_axis
 
@@ -52,22 +52,22 @@ def default_id(path: Path) -> str:
     return re.sub(r'[^A-Za-z0-9_.-]', '_', path.stem)[:MAX_ID] or 'model'
 
 
-def category_of(text: object) -> str | None:
-    """A category of ours from its name, or a folder's (``double_bed``), else None. The
-    categories of a data set whose weights are in use count too
-    (``categories.define_room_types``: ``--weights-dir`` on the command line)."""
+def category_of(text: object, vocabulary: Vocabulary = PAPER) -> str | None:
+    """A category of ``vocabulary`` from its name, or a folder's (``double_bed``), else
+    None: the paper's, and those of the data set whose weights are in use
+    (``--weights-dir`` on the command line)."""
     if not isinstance(text, str):
         return None
     name = text.strip().lower().replace('_', ' ')
     try:
-        category_info(name)
+        vocabulary.info(name)
     except KeyError:
         return None
     return name
 
 
-def make_spec(entry: dict[str, Any], folder: Path, defaults: dict[str, Any]
-              ) -> ModelSpec | str:
+def make_spec(entry: dict[str, Any], folder: Path, defaults: dict[str, Any],
+              vocabulary: Vocabulary = PAPER) -> ModelSpec | str:
     """The spec of one manifest entry (its ``file`` relative to ``folder``), with
     ``defaults`` under it; or what is wrong with it, as a report clause."""
     unknown = sorted(set(entry) - set(SPEC_KEYS), key=str)
@@ -77,7 +77,7 @@ def make_spec(entry: dict[str, Any], folder: Path, defaults: dict[str, Any]
     if not isinstance(file, str) or not file.strip():
         return 'no "file" (the mesh file, relative to the folder)'
     path = Path(file) if Path(file).is_absolute() else folder / file
-    category = category_of(entry.get('category'))
+    category = category_of(entry.get('category'), vocabulary)
     if category is None:
         return (f'category {quoted(entry.get("category"))} is not a category of ours '
                 f'(`scene-synth catalog list` shows them)')

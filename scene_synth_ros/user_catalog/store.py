@@ -33,6 +33,7 @@ import numpy as np
 
 from .. import catalog
 from ..catalog import Catalog, UserModel
+from ..categories import PAPER, Vocabulary
 from ..errors import CatalogError, quoted
 from ..files import read_json, safe_name, write_atomic
 from ..schema import format_json
@@ -96,8 +97,9 @@ def write_marker(m: UserModel, folder: Path) -> str | None:
     return str(out)
 
 
-def read_catalog(path: str | Path) -> Catalog:
-    """The Catalog of a catalog file (the procedural catalog under the user's models)."""
+def read_catalog(path: str | Path, vocabulary: Vocabulary = PAPER) -> Catalog:
+    """The Catalog of a catalog file (the procedural catalog under the user's models), whose
+    categories are those of ``vocabulary``."""
     path = Path(path)
     name = quoted(str(path), 80)
     data = read_json(path, 'the catalog', CatalogError,
@@ -110,7 +112,7 @@ def read_catalog(path: str | Path) -> Catalog:
     models, seen = [], set()
     for i, record in enumerate(data['models']):
         try:
-            m = _model(record, path.parent)
+            m = _model(record, path.parent, vocabulary)
         except (KeyError, TypeError, ValueError) as e:
             raise CatalogError(f'the catalog {name}: models[{i}] is broken ({e}); build it '
                                f'again') from None
@@ -131,17 +133,17 @@ def _numbers(value: Any, n: int, positive: bool = False) -> tuple[float, ...]:
     return out
 
 
-def _model(record: dict[str, Any], folder: Path) -> UserModel:
+def _model(record: dict[str, Any], folder: Path, vocabulary: Vocabulary) -> UserModel:
     model_id = record['model_id']
     if not isinstance(model_id, str) or not 0 < len(model_id) <= MAX_ID or '@' in model_id:
         raise ValueError('a bad model_id')
     try:
-        catalog.get(model_id)
+        catalog.get(model_id, vocabulary)
     except KeyError:
         pass
     else:
         raise ValueError(f'model_id {model_id!r} is a procedural model\'s')
-    category = category_of(record['category'])
+    category = category_of(record['category'], vocabulary)
     if category is None or category != record['category']:
         raise ValueError(f'category {record["category"]!r} is not one of ours')
     up, front = record['up'], record['front']
@@ -161,10 +163,11 @@ def _model(record: dict[str, Any], folder: Path) -> UserModel:
                      str((folder / marker).resolve()) if marker else '')
 
 
-def load_catalog(source: str | os.PathLike | Catalog | None) -> Catalog:
+def load_catalog(source: str | os.PathLike | Catalog | None,
+                 vocabulary: Vocabulary = PAPER) -> Catalog:
     """The catalog of ``source``: the procedural one for None, a Catalog as it is, else the
-    file ``scene-synth catalog build`` wrote (read once per file version;
-    ``errors.CatalogError`` names what is wrong with it)."""
+    file ``scene-synth catalog build`` wrote, of the categories of ``vocabulary`` (read once
+    per file version; ``errors.CatalogError`` names what is wrong with it)."""
     if source is None:
         return catalog.PROCEDURAL
     if isinstance(source, Catalog):
@@ -175,9 +178,9 @@ def load_catalog(source: str | os.PathLike | Catalog | None) -> Catalog:
         stamp = (st.st_mtime_ns, st.st_size)
     except OSError:
         stamp = None                  # the reader says what is wrong with the path
-    return _load_file(path, stamp)
+    return _load_file(path, stamp, vocabulary)
 
 
 @lru_cache(maxsize=8)
-def _load_file(path: str, stamp) -> Catalog:
-    return read_catalog(path)
+def _load_file(path: str, stamp, vocabulary: Vocabulary) -> Catalog:
+    return read_catalog(path, vocabulary)
