@@ -15,11 +15,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 import math
-from typing import Any, Callable, Hashable, Iterable, Iterator
+from typing import Any, Callable, Collection, Hashable, Iterable, Iterator
 
 import numpy as np
 import shapely
 from shapely.geometry import LineString, Polygon
+
+DEFAULT_WALL_HEIGHT = 2.6      # m, a room layout's wall height when it gives none
 
 
 @dataclass(frozen=True)
@@ -200,9 +202,19 @@ class Room:
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> 'Room':
         return cls(d['room_type'], tuple((float(x), float(y)) for x, y in d['floor']),
-                   float(d.get('wall_height', 2.6)),
+                   float(d.get('wall_height', DEFAULT_WALL_HEIGHT)),
                    tuple(Opening.from_dict('door', o) for o in d.get('doors', [])),
                    tuple(Opening.from_dict('window', o) for o in d.get('windows', [])))
+
+
+def fresh_id(category: str, taken: Collection[str], count: int) -> str:
+    """A readable id for one more object of ``category``: ``<category>_<n>``, from ``n`` =
+    ``count`` (the objects of the category there already) up to the first not ``taken``."""
+    stem = category.replace(' ', '_')
+    n = count
+    while f'{stem}_{n}' in taken:
+        n += 1
+    return f'{stem}_{n}'
 
 
 def wrap_angle(yaw: float) -> float:
@@ -348,12 +360,8 @@ class Scene:
 
     def new_id(self, category: str) -> str:
         """A fresh object id, readable and unique within this scene."""
-        stem = category.replace(' ', '_')
-        taken = {o.id for o in self.objects}
-        n = sum(1 for o in self.objects if o.category == category)
-        while f'{stem}_{n}' in taken:
-            n += 1
-        return f'{stem}_{n}'
+        return fresh_id(category, {o.id for o in self.objects},
+                        sum(1 for o in self.objects if o.category == category))
 
     def category_counts(self) -> dict[str, int]:
         counts: dict[str, int] = {}

@@ -22,6 +22,7 @@ The schemas are resolved locally through a ``referencing`` registry; nothing is 
 """
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Mapping
 from functools import lru_cache
 import json
@@ -41,13 +42,19 @@ from .files import write_atomic
 from .limits import LimitExceeded, YamlError, check_tree, join, loads, loads_yaml
 from .paths import schema_dir
 from .render import RoomDoesNotFit, room_frame_box
-from .scene import Opening, PlacedObject, Room, Scene, ccw
+from .scene import PlacedObject, Room, Scene, ccw, fresh_id
+from .thresholds import (
+    CENTRE_OFF_FLOOR,
+    MIN_FLOOR_AREA,
+    MIN_VERTEX_SPACING,
+    OPENING_TOLERANCE,
+    SIZE_SLACK,
+)
 
 __all__ = [
     'SceneValidationError', 'parse_room_layout', 'parse_scene', 'load_scene', 'dump_scene',
     'save_scene', 'validate_scene_dict', 'validate_layout_dict', 'SCHEMA_IDS',
-    'MIN_FLOOR_AREA', 'WALL_HEIGHT_RANGE', 'OPENING_TOLERANCE', 'FLOOR_TOLERANCE',
-    'SIZE_SLACK', 'DEFAULT_WALL_HEIGHT', 'MIN_VERTEX_SPACING',
+    'plain_json', 'check_against_schema', 'check_floor', 'format_json', 'read_payload',
 ]
 
 _BASE = 'https://scene-synth-ros.invalid/msg_schemas/'
@@ -56,14 +63,6 @@ SCHEMA_IDS = {
     'placed_object': _BASE + 'placed_object.schema.json',
     'scene': _BASE + 'scene.schema.json',
 }
-
-DEFAULT_WALL_HEIGHT = 2.6
-MIN_FLOOR_AREA = 2.0            # m^2: a smaller floor is degenerate, not a room
-MIN_VERTEX_SPACING = 1e-3       # m: consecutive vertices closer than this repeat each other
-WALL_HEIGHT_RANGE = (1.8, 6.0)  # m, inclusive (also in room_layout.schema.json)
-OPENING_TOLERANCE = 0.01        # m: an opening's centre and ends may miss its wall by this
-FLOOR_TOLERANCE = 0.01          # m: an object's centre may lie this far outside the floor
-SIZE_SLACK = 0.5                # CategoryInfo.size_is_plausible slack
 
 
 class SceneValidationError(SceneSynthError, ValueError):
@@ -140,7 +139,7 @@ def _plain(value: Any) -> Any:
     return value
 
 
-def _tree(value: Any) -> Any:
+def plain_json(value: Any) -> Any:
     """``value`` as plain JSON values, once it is known to be within ``limits``."""
     try:
         check_tree(value)
@@ -169,9 +168,9 @@ def _load(text_or_dict: Any, yaml_ok: bool = False) -> Any:
         except RecursionError:
             raise SceneValidationError('the payload is not valid JSON: it is nested too deeply',
                                        '') from None
-        return _tree(text_or_dict)
+        return plain_json(text_or_dict)
     if isinstance(text_or_dict, Mapping):
-        return _tree(text_or_dict)
+        return plain_json(text_or_dict)
     raise SceneValidationError(
         f'the payload must be JSON text or a dict, got {type(text_or_dict).__name__}', '')
 
@@ -273,7 +272,7 @@ def _schema_error_message(error, prefix: str) -> tuple[str, str]:
     return path, f'{name} is invalid: {text}'
 
 
-def _check_schema(d: Any, key: str, prefix: str = '') -> None:
+def check_against_schema(d: Any, key: str, prefix: str = '') -> None:
     from jsonschema.exceptions import best_match
 
     error = best_match(_validator(key).iter_errors(d))
@@ -294,7 +293,7 @@ def _room_type(value: str, path: str, vocabulary: Vocabulary) -> str:
             path) from None
 
 
-def _check_floor(points: list[list[float]], prefix: str) -> list[tuple[float, float]]:
+def check_floor(points: list[list[float]], prefix: str) -> list[tuple[float, float]]:
     """The floor's vertices as the room keeps them (an explicit closing vertex dropped),
     after the checks that they make a simple polygon of a room's area."""
     path = _join(prefix, 'floor')
@@ -396,10 +395,8 @@ def _check_openings(room: Room, prefix: str) -> None:
 def _build_room(d: dict[str, Any], prefix: str, vocabulary: Vocabulary) -> Room:
     """The Room of an (already schema-valid) room dict, after the geometric checks."""
     room_type = _room_type(d['room_type'], _join(prefix, 'room_type'), vocabulary)
-    room = Room(room_type, ccw(_check_floor(d['floor'], prefix)),
-                float(d.get('wall_height', DEFAULT_WALL_HEIGHT)),
-                tuple(Opening.from_dict('door', o) for o in d.get('doors', [])),
-                tuple(Opening.from_dict('window', o) for o in d.get('windows', [])))
+    room = Room.from_dict({**d, 'room_type': room_type,
+                           'floor': ccw(check_floor(d['floor'], prefix))})
     _check_fits(room, prefix, vocabulary)
     _check_openings(room, prefix)
     return room
@@ -432,15 +429,13 @@ def _build_objects(items: list[dict[str, Any]], room: Room, prefix: str,
         _check_support(items, i, seen, _join(_join(prefix, i), 'support'), room, spec)
 
     objects: list[PlacedObject] = []
-    for d in _fill_ids(items, room):
+    for d in _fill_ids(items):
         size = tuple(float(v) for v in d['size'])
         model_id = d.get('model_id')
         if model_id is None:
             model_id = models.nearest(d['category'], size[0], size[1], spec.room_type,
                                       vocabulary).model_id
-        objects.append(PlacedObject(str(d['id']), d['category'], model_id,
-                                    tuple(float(v) for v in d['position']), float(d['yaw']),
-                                    size, d.get('support')))
+        objects.append(PlacedObject.from_dict({**d, 'model_id': model_id}))
     return objects
 
 
@@ -468,13 +463,13 @@ def _check_object(d: dict[str, Any], path: str, room: Room, spec: RoomTypeSpec,
         raise SceneValidationError(
             f'{spath} is not plausible for {with_article(category)}: {"; ".join(bad)}', spath)
     x, y, z = (float(v) for v in d['position'])
-    if z < -FLOOR_TOLERANCE:
+    if z < -CENTRE_OFF_FLOOR:
         zpath = _join(_join(path, 'position'), 2)
         raise SceneValidationError(
             f'{zpath} is {number(z)} m, below the floor (z is the bottom of the object)',
             zpath)
     outside = room.polygon.distance(shapely.Point(x, y))
-    if outside > FLOOR_TOLERANCE:
+    if outside > CENTRE_OFF_FLOOR:
         ppath = _join(path, 'position')
         raise SceneValidationError(
             f'{ppath} is outside the floor: the centre ({number(x)}, {number(y)}) is '
@@ -522,19 +517,19 @@ def _check_support(items: list[dict[str, Any]], i: int, seen: dict[str, int], sp
             f'(allowed: {", ".join(parents)})', spath)
 
 
-def _fill_ids(items: list[dict[str, Any]], room: Room) -> list[dict[str, Any]]:
-    """Copies of the object dicts with ``id`` filled in where missing (Scene.new_id order:
-    given ids are reserved first, then missing ones are assigned in list order)."""
-    given = [PlacedObject(str(d['id']), d['category'], '', (0.0, 0.0, 0.0), 0.0,
-                          (1.0, 1.0, 1.0)) for d in items if d.get('id') is not None]
-    scratch = Scene(room, given)
+def _fill_ids(items: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Copies of the object dicts with ``id`` filled in where missing (``Scene.new_id``'s
+    order: given ids are reserved first, then missing ones are assigned in list order)."""
+    given = [d for d in items if d.get('id') is not None]
+    taken = {str(d['id']) for d in given}
+    counts = Counter(d['category'] for d in given)
     out = []
     for d in items:
         d = dict(d)
         if d.get('id') is None:
-            d['id'] = scratch.new_id(d['category'])
-            scratch.objects.append(PlacedObject(d['id'], d['category'], '', (0.0, 0.0, 0.0),
-                                                0.0, (1.0, 1.0, 1.0)))
+            d['id'] = fresh_id(d['category'], taken, counts[d['category']])
+            taken.add(d['id'])
+            counts[d['category']] += 1
         out.append(d)
     return out
 
@@ -543,17 +538,17 @@ def _fill_ids(items: list[dict[str, Any]], room: Room) -> list[dict[str, Any]]:
 
 def validate_layout_dict(d: Any, vocabulary: Vocabulary = PAPER) -> None:
     """Raise SceneValidationError unless ``d`` is a valid room layout (objects optional)."""
-    _layout_to_scene(_tree(d), vocabulary=vocabulary)
+    _layout_to_scene(plain_json(d), vocabulary=vocabulary)
 
 
 def validate_scene_dict(d: Any, vocabulary: Vocabulary = PAPER) -> None:
     """Raise SceneValidationError unless ``d`` is a valid scene dict."""
-    _scene_from_dict(_tree(d), vocabulary=vocabulary)
+    _scene_from_dict(plain_json(d), vocabulary=vocabulary)
 
 
 def _layout_to_scene(d: Any, models: catalog.Catalog | None = None,
                      vocabulary: Vocabulary = PAPER) -> Scene:
-    _check_schema(d, 'room_layout')
+    check_against_schema(d, 'room_layout')
     room = _build_room(d, '', vocabulary)
     items = d.get('objects', [])
     objects = _build_objects(items, room, 'objects', models, vocabulary)
@@ -562,7 +557,7 @@ def _layout_to_scene(d: Any, models: catalog.Catalog | None = None,
 
 def _scene_from_dict(d: Any, models: catalog.Catalog | None = None,
                      vocabulary: Vocabulary = PAPER) -> Scene:
-    _check_schema(d, 'scene')
+    check_against_schema(d, 'scene')
     room = _build_room(d['room'], 'room', vocabulary)
     objects = _build_objects(d.get('objects', []), room, 'objects', models, vocabulary)
     return Scene(room, objects, dict(d.get('meta', {})))
@@ -618,16 +613,16 @@ def dump_scene(scene: Scene, catalog: catalog.Catalog | None = None,
                vocabulary: Vocabulary = PAPER) -> str:
     """The scene as JSON text, validated first (an invalid scene raises
     SceneValidationError, so nothing invalid is ever written)."""
-    d = _tree(scene.to_dict())
+    d = plain_json(scene.to_dict())
     _scene_from_dict(d, catalog, vocabulary)
     try:
-        return _format(d)
+        return format_json(d)
     except (TypeError, ValueError) as e:
         raise SceneValidationError(
             f'meta cannot be written as JSON: {" ".join(str(e).split())}', 'meta') from None
 
 
-def _format(value: Any, indent: int = 0) -> str:
+def format_json(value: Any, indent: int = 0) -> str:
     """JSON with an indented structure but numeric arrays (points, sizes) on one line."""
     flat = json.dumps(value, allow_nan=False, ensure_ascii=False, separators=(', ', ': '))
     if not isinstance(value, (dict, list)) or (
@@ -635,10 +630,10 @@ def _format(value: Any, indent: int = 0) -> str:
         return flat
     pad, inner = ' ' * indent, ' ' * (indent + 2)
     if isinstance(value, list):
-        body = ',\n'.join(inner + _format(v, indent + 2) for v in value)
+        body = ',\n'.join(inner + format_json(v, indent + 2) for v in value)
         return f'[\n{body}\n{pad}]'
     body = ',\n'.join(f'{inner}{json.dumps(str(k), ensure_ascii=False)}: '
-                      f'{_format(v, indent + 2)}' for k, v in value.items())
+                      f'{format_json(v, indent + 2)}' for k, v in value.items())
     return f'{{\n{body}\n{pad}}}'
 
 
@@ -657,7 +652,3 @@ def save_scene(scene: Scene, path: str | os.PathLike,
 
 # What the importers of other data sets (``datasets``) reuse for scenes whose categories are
 # the data set's own: the same limits, JSON schemas, floor checks and file layout.
-plain_json = _tree
-check_against_schema = _check_schema
-check_floor = _check_floor
-format_json = _format

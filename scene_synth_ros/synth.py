@@ -32,7 +32,9 @@ reproducible from its seed. ``Synthesis.timings`` has the seconds a room spent i
 ``MODULES``: rendering images, each network (snap with orientation), and insertion. Every
 network call goes through ``lockstep.ask``, so that rooms furnished together in lockstep
 (``lockstep.run``) share their forward passes; there a room's seconds also count the other
-rooms' work while it waited.
+rooms' work while it waited. The networks themselves, loaded and laid out for the device and
+run by torch or onnxruntime, are ``networks.loaded``'s; the rules kept at insertion are
+``rules.insertion``'s.
 """
 from __future__ import annotations
 
@@ -50,7 +52,7 @@ import torch
 
 from . import catalog
 from .categories import PAPER, RoomTypeSpec, Vocabulary
-from .errors import SceneSynthError, UnknownCategory, quoted, sentence
+from .errors import SceneSynthError, UnknownCategory, quoted
 from .geometry import (
     door_zone,
     enters_zone,
@@ -58,17 +60,15 @@ from .geometry import (
     support_fraction,
 )
 from .lockstep import ask
-from .networks.blocks import fold_batch_norms
 from .networks.bundle import (
     Bundle,
     BundleError,
-    bundle_path,
     bundle_specs,
-    load_bundle,
     weights_vocabulary,
 )
 from .networks.category import category_probabilities
 from .networks.config import resolve_device, resolve_runtime
+from .networks.loaded import LoadedNetworks
 from .networks.location import LocationDraws, location_distribution
 from .networks.orientation import decode_angle, snap_angle
 from .networks.runtime import OnnxCalls
@@ -253,41 +253,24 @@ class Synthesizer:
             self.runtime = resolve_runtime(self.config.runtime, self.device)
         except ValueError as e:
             raise SynthesisError(str(e)) from None
-        self._bundles: dict[str, Bundle] = {}
-        self._calls: dict[str, dict | OnnxCalls] = {}   # what ``ask`` gets, per room type
-        # On the CPU the images are drawn, and the networks' weights laid out, channels-last:
-        # oneDNN convolves 46-channel images so laid out 1.3-2.2x faster
-        # (``docs/design/investigations.md``), and drawn that way they need no
-        # copy to get there.
-        self._channels_last = self.device.type == 'cpu'
         self._renderers: dict[int, TopDownRenderer] = {}
         # The room types of the weights' bundles; what they know of each (a data set's
         # category sets where they were trained on one) is this synthesizer's vocabulary,
         # which its callers parse layouts with.
         self.room_types = list(bundle_specs(self.weights_dir))
         self.vocabulary = weights_vocabulary(self.weights_dir)
+        self.networks = LoadedNetworks(self.weights_dir, self.device, self.runtime,
+                                       self.vocabulary)
 
     # ---- set-up ---------------------------------------------------------------------------
     def bundle(self, room_type: str) -> Bundle:
-        """The networks of ``room_type``, their batch norms folded for inference
-        (``fold_batch_norms``); raises ``BundleError`` naming a bad file."""
-        rt = self.vocabulary.resolve(room_type)
-        if rt not in self._bundles:
-            self._bundles[rt] = load_bundle(bundle_path(self.weights_dir, rt, self.vocabulary),
-                                            self.device)
-            for net in self._bundles[rt].networks.values():
-                fold_batch_norms(net)
-                if self._channels_last:
-                    net.to(memory_format=torch.channels_last)
-            networks = self._bundles[rt].networks
-            self._calls[rt] = OnnxCalls(networks) if self.runtime == 'onnxruntime' else networks
-        return self._bundles[rt]
+        """The networks of ``room_type``, ready for inference (``LoadedNetworks.bundle``);
+        raises ``BundleError`` naming a bad file."""
+        return self.networks.bundle(room_type)
 
     def calls(self, room_type: str) -> dict | OnnxCalls:
-        """The networks of ``room_type`` as synthesis runs them (``networks.runtime``): the
-        bundle's torch networks, or their ``OnnxCalls``."""
-        self.bundle(room_type)
-        return self._calls[self.vocabulary.resolve(room_type)]
+        """The networks of ``room_type`` as synthesis runs them (``LoadedNetworks.calls``)."""
+        return self.networks.calls(room_type)
 
     def load_all(self) -> None:
         """Load the bundle of every room type of the weights directory and ready its network
@@ -299,49 +282,13 @@ class Synthesizer:
             self.prepare(rt)
 
     def prepare(self, room_type: str) -> None:
-        """Load ``room_type``'s bundle and, in onnxruntime, have each of its network calls
-        exported, or read from the cache, and in a session (``runtime.OnnxCalls``): one pass
-        of each on an empty image, which draws nothing from any seed. Networks onnxruntime
-        cannot run are torch's under ``auto``; asked for by name, that is a SynthesisError."""
-        bundle = self.bundle(room_type)
-        calls = self.calls(room_type)
-        if not isinstance(calls, OnnxCalls):
-            return
-        n = bundle.config.model.resolution
-        c = FIRST_CATEGORY + len(self.vocabulary.spec(bundle.room_type).names)
-        drawn = self._image(n, c, calls=calls)
-        drawn[:c] = 0.0
-        image = torch.from_numpy(drawn)[None]
-        cats = torch.zeros(1, dtype=torch.long)
-        nets = bundle.networks
-        module = 'category'
-        try:
-            with torch.inference_mode():
-                calls(module, image, torch.zeros(1, c - FIRST_CATEGORY))
-                module = 'location'
-                calls(module, image)
-                for module in ('orientation', 'dimensions'):
-                    calls(module, image, cats, torch.zeros(1, nets[module].latent))
-        except Exception as e:   # whatever the exporter or onnxruntime raised
-            if self.config.runtime == 'onnxruntime':
-                raise SynthesisError(sentence(
-                    f'onnxruntime cannot run the {bundle.room_type} networks\' {module} call '
-                    f'({type(e).__name__}: {sentence(e, 160)}); runtime torch runs them')
-                ) from None
-            self._calls[bundle.room_type] = nets
-
-    def _image(self, n: int, c: int, batch: int | None = None, calls=None) -> np.ndarray:
-        """An image of ``c`` channels, ``n`` x ``n`` (a batch of them), shaped channels-first
-        for the renderer, laid out as the networks take it: the renderer draws the first
-        ``c`` channels; for ``calls`` run by onnxruntime zero channels follow, up to the
-        graphs' count (``OnnxCalls.image_channels``), so that the graphs take it as it is."""
-        lead = () if batch is None else (batch,)
-        if not self._channels_last:
-            return np.empty(lead + (c, n, n), dtype=np.float32)
-        p = calls.image_channels if isinstance(calls, OnnxCalls) else c
-        image = np.empty(lead + (n, n, p), dtype=np.float32)
-        image[..., c:] = 0.0
-        return np.moveaxis(image, -1, -3)
+        """Load ``room_type``'s bundle and ready its calls (``LoadedNetworks.prepare``).
+        Networks onnxruntime cannot run are torch's under runtime ``auto``; asked for by name,
+        that is a SynthesisError."""
+        named = self.config.runtime == 'onnxruntime'
+        why = self.networks.prepare(room_type, fall_back=not named)
+        if why is not None and named:
+            raise SynthesisError(why)
 
     def _renderer(self, resolution: int) -> TopDownRenderer:
         if resolution not in self._renderers:
@@ -553,7 +500,7 @@ class Synthesizer:
         """The scene image the category and location modules see (a batch of one), and the
         scene on the location grid, for the location mask."""
         n, c = ctx.frame.resolution, FIRST_CATEGORY + len(ctx.spec.names)
-        full = self._image(n, c, calls=ctx.calls)
+        full = self.networks.image(n, c, calls=ctx.calls)
         image = self._renderer(n).render(scene, ctx.frame, out=full[:c])
         if ctx.grid.resolution == ctx.frame.resolution:
             small = image
@@ -675,14 +622,14 @@ class Synthesizer:
         # crop cost page faults and a copy into the batch). The networks read it before the
         # next batch is drawn; on a GPU ``to`` copies it anyway.
         if ctx.crops is None or ctx.crops.shape[0] < len(points):
-            ctx.crops = self._image(n, c, len(points), ctx.calls)
+            ctx.crops = self.networks.image(n, c, len(points), ctx.calls)
         batch = ctx.crops[:len(points)]
         # The orientation module's crops (at the room's yaw) are still in the buffer when
         # the dimensions module asks for crops of the same points: one at a yaw a quarter
         # turn from the room's (most: snapped yaws) is one of those turned, not drawn again
         # (where the images are channels-last, which makes turning cheap).
         these = (id(scene), len(scene.objects), points.tobytes())
-        held = self._channels_last and ctx.crops_held == these
+        held = self.networks.channels_last and ctx.crops_held == these
         for k, (pt, yaw) in enumerate(zip(points, yaws, strict=True)):
             q = quarter_turns(yaw - ctx.frame.yaw) if held else None
             if q is not None:

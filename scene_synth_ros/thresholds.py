@@ -15,6 +15,14 @@ MIN_SUPPORT = 0.70              # a second-tier footprint must be >= 70 % on its
 DOOR_ZONE_MIN_DEPTH = 0.80      # clear zone inside a door: at least this deep...
 DOOR_ZONE_SIDE_MARGIN = 0.10    # ...and this much wider than the door on each side
 
+# ---- what a layout must be to be furnished (``schema``) --------------------------------
+MIN_FLOOR_AREA = 2.0            # m^2: a smaller floor is degenerate, not a room
+MIN_VERTEX_SPACING = 1e-3       # m: consecutive vertices closer than this repeat each other
+WALL_HEIGHT_RANGE = (1.8, 6.0)  # m, inclusive (also in room_layout.schema.json)
+OPENING_TOLERANCE = 0.01        # m: an opening's centre and ends may miss its wall by this
+CENTRE_OFF_FLOOR = 0.01         # m: an object's centre may lie this far outside the floor
+SIZE_SLACK = 0.5                # a size within its category's ranges widened by half
+
 # ---- the robot (``rules.robot.Robot``'s defaults) -------------------------------------
 # The robot every room is furnished and judged for unless a user names another: it must get
 # from every door to every door (the validity check) and reach every object's front.

@@ -27,7 +27,7 @@ def test_import_writes_scenes_report_and_description(cli, data):
     assert sorted(p.name for p in out.iterdir()) == [
         'dataset.yaml', 'procthor_1_room_1.json', 'report.json', 'report.txt']
     scene = schema.read_payload((out / 'procthor_1_room_1.json').read_text())
-    schema._check_schema(scene, 'scene')
+    schema.check_against_schema(scene, 'scene')
     report = json.loads((out / 'report.json').read_text())
     assert report['totals']['rooms_kept'] == 1
     assert report['lines'][0]['reason'] == 'missing model'

@@ -172,7 +172,7 @@ def test_room_floor_openings_and_objects_match_hand_calculation(data):
     assert scene['meta']['source'] == {'format': '3dfront', 'file': 'house.json',
                                        'house_id': 'house-1', 'room_id': 'MasterBedroom-1',
                                        'room_type': 'MasterBedroom'}
-    schema._check_schema(scene, 'scene')
+    schema.check_against_schema(scene, 'scene')
 
 
 def test_every_broken_input_is_a_report_line(data):

@@ -115,7 +115,7 @@ def test_house_matches_hand_calculation(data):
     assert lamp['yaw'] == pytest.approx(math.pi / 2)
     assert lamp['support'] == dresser['id']
     assert [o['category'] for o in scene['objects']][-1] == 'desk lamp'   # second tier last
-    schema._check_schema(scene, 'scene')
+    schema.check_against_schema(scene, 'scene')
 
 
 def test_broken_lines_and_objects_are_report_lines(data):

@@ -67,7 +67,7 @@ def test_every_real_file_imports_with_a_report(imported, fmt):
     written = sorted(p.stem for p in folder.glob(f'{fmt}_*.json'))
     assert written == sorted(result.scenes)
     for name in written:
-        schema._check_schema(schema.read_payload((folder / f'{name}.json').read_text()),
+        schema.check_against_schema(schema.read_payload((folder / f'{name}.json').read_text()),
                              'scene')
     text = (folder / 'report.txt').read_text()
     assert text.startswith(result.report.summary())

@@ -111,7 +111,7 @@ def test_objects_and_openings_match_hand_calculation(data):
     assert lamp['support'] == bed['id']
     table = objs['coffee table']                 # 45 degrees: a square footprint, noted
     assert table['size'][:2] == pytest.approx([1 / math.sqrt(2)] * 2, abs=1e-4)
-    schema._check_schema(scene, 'scene')
+    schema.check_against_schema(scene, 'scene')
 
 
 def test_broken_inputs_are_report_lines(data):

@@ -175,7 +175,7 @@ def test_images_are_drawn_channels_last_as_the_networks_take_them(synth):
     renderer = synth._renderer(64)
     channels = FIRST_CATEGORY + len(room_spec('bedroom').names)
     # For onnxruntime zero channels follow the drawn ones (``runtime.padded_channels``).
-    full = synth._image(64, channels, calls=synth.calls('bedroom'))
+    full = synth.networks.image(64, channels, calls=synth.calls('bedroom'))
     assert full.shape[0] == (padded_channels(channels) if synth.runtime == 'onnxruntime'
                              else channels)
     drawn = renderer.render(scene, out=full[:channels])

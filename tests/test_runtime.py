@@ -245,7 +245,7 @@ def test_images_drawn_with_zero_channels_are_taken_as_they_are(synth):
     assert c == FIRST_CATEGORY + len(room_spec('bedroom').names)
     assert calls.image_channels == padded_channels(c) and calls.image_channels % 16 == 0
     # What the synthesizer draws for onnxruntime: the zero channels already there.
-    image = synth._image(64, c, calls=calls)
+    image = synth.networks.image(64, c, calls=calls)
     assert image.shape == (calls.image_channels, 64, 64)
     assert not image[c:].any()
     module, args = calls_of(synth, 'bedroom', 1, True, seed=5)[1]
@@ -259,7 +259,7 @@ def test_images_drawn_with_zero_channels_are_taken_as_they_are(synth):
         calls(module, torch.zeros(1, 40, 64, 64))
     # torch draws the channels the networks take, no more.
     by_torch = Synthesizer(config=SynthConfig(runtime='torch'))
-    assert by_torch._image(64, c, calls=by_torch.calls('bedroom')).shape[0] == c
+    assert by_torch.networks.image(64, c, calls=by_torch.calls('bedroom')).shape[0] == c
 
 
 def test_loading_every_bundle_readies_every_call(tiny_weights, one_thread):

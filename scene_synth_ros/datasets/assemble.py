@@ -27,7 +27,8 @@ from shapely.geometry import Point, Polygon
 from .. import schema
 from ..limits import MAX_OPENINGS
 from ..render import room_axis_yaw
-from ..scene import Room
+from ..scene import DEFAULT_WALL_HEIGHT, Room
+from ..thresholds import OPENING_TOLERANCE, WALL_HEIGHT_RANGE
 from .config import ImportConfig
 from .records import RawObject, RawOpening, RawRoom, footprint
 from .report import ImportReport
@@ -35,7 +36,6 @@ from .report import ImportReport
 MIN_OPENING, MAX_OPENING = 0.3, 5.0      # m, exclusive (room_layout.schema.json)
 MIN_DOOR_HEIGHT = 1.5                     # m (room_layout.schema.json)
 MIN_WINDOW_HEIGHT = 0.2                   # m, exclusive
-WALL_HEIGHT_RANGE = schema.WALL_HEIGHT_RANGE
 MAX_NAME = 100                            # characters of an object id before its number
 
 
@@ -105,10 +105,10 @@ def _room(raw: RawRoom, room_type: str, config: ImportConfig, report: ImportRepo
     except (ValueError, GEOSException):
         report.add('room', 'no floor', at, 'its floor outline is not a polygon')
         return None
-    height = raw.wall_height if raw.wall_height is not None else schema.DEFAULT_WALL_HEIGHT
+    height = raw.wall_height if raw.wall_height is not None else DEFAULT_WALL_HEIGHT
     lo, hi = WALL_HEIGHT_RANGE
     if not math.isfinite(height):
-        height = schema.DEFAULT_WALL_HEIGHT
+        height = DEFAULT_WALL_HEIGHT
     elif not lo <= height <= hi:
         kept = min(max(height, lo), hi)
         report.add('note', 'mapped with a guess', at, f'its wall height {height:.2f} m is '
@@ -174,7 +174,7 @@ def _openings(raw: RawRoom, room: Room, reach: float, report: ImportReport, at: 
     kept: list[tuple[int, float, float, dict]] = []
     for wall_index, lo, hi, d in doors + windows:       # doors win over windows
         clash = next((k for k in kept if k[0] == wall_index
-                      and min(hi, k[2]) - max(lo, k[1]) > schema.OPENING_TOLERANCE), None)
+                      and min(hi, k[2]) - max(lo, k[1]) > OPENING_TOLERANCE), None)
         if clash is not None:
             kind = 'door' if 'sill' not in d else 'window'
             report.add('opening', 'overlapping openings', at,
