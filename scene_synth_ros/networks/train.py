@@ -16,6 +16,7 @@ from typing import Callable
 import numpy as np
 import torch
 from torch import nn
+from tqdm import tqdm
 
 from ..catalog import variants
 from ..categories import (
@@ -26,6 +27,7 @@ from ..categories import (
     room_types,
 )
 from ..corpus.generate import generate_corpus
+from ..datasets.training import describe_dir, room_type_specs, split_rooms
 from ..files import writing_together
 from ..scene import Scene
 from . import COMPONENT_ROWS, NETWORKS
@@ -59,7 +61,6 @@ def load_corpus(room_type: str, cfg: PipelineConfig, workers: int | None = None,
     corpus seed shuffles; at most N training and V held-out rooms)."""
     t = cfg.train
     if data_dir is not None:
-        from ..datasets.training import split_rooms
         data = split_rooms(data_dir, room_spec(room_type), t.corpus_seed, t.train_rooms,
                            t.val_rooms)
         return RoomCorpus(data.train, data.held_out)
@@ -227,7 +228,6 @@ def train_module(module: str, net: nn.Module, source: ExampleSource, val: Exampl
     """Train ``module`` from its last checkpoint in ``run_dir`` (if any) to the end of its
     schedule and return its held-out metrics; with ``until``, stop after that step (saving a
     checkpoint) and return None, as an interrupted run would."""
-    from tqdm import tqdm
     t = cfg.train
     sched: ModuleSchedule = getattr(t, module)
     net.to(device).train()
@@ -441,7 +441,6 @@ def train(types: list[str] | None, cfg: PipelineConfig, run_root: Path, weights_
     if unknown:
         raise ValueError(f'unknown module {unknown[0]!r}; expected some of {", ".join(NETWORKS)}')
     if data_dir is not None:
-        from ..datasets.training import describe_dir, room_type_specs
         specs = room_type_specs(describe_dir(data_dir))
         define_room_types(specs.values())
         if types is None:
