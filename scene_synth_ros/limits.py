@@ -21,12 +21,12 @@ refused with one sentence before it is parsed further.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from functools import lru_cache
 import json
 import math
 from typing import Any, Callable
 
 import numpy as np
+import yaml
 
 from .errors import MAX_QUOTE, number, quoted
 
@@ -107,14 +107,12 @@ def loads_yaml(text: str) -> Any:
     """YAML text (a superset of JSON; its flow style is what people type at ``ros2 topic
     pub``) as Python values of the kinds JSON has. Raises ``LimitExceeded`` past the bounds
     and ``YamlError`` for anything else."""
-    import yaml
-
     size = len(text.encode('utf-8', 'surrogatepass'))
     if size > MAX_YAML_BYTES:
         raise LimitExceeded(f'the payload is {size} bytes, and YAML is read only up to '
                             f'{MAX_YAML_BYTES} bytes (JSON up to {MAX_PAYLOAD_BYTES})')
     try:
-        value = yaml.load(text, Loader=_yaml_loader())
+        value = yaml.load(text, Loader=_JsonKindsLoader)
     except yaml.MarkedYAMLError as e:
         where = f' at line {e.problem_mark.line + 1} column {e.problem_mark.column + 1}' \
             if e.problem_mark else ''
@@ -129,26 +127,21 @@ def loads_yaml(text: str) -> Any:
     return value
 
 
-@lru_cache(maxsize=None)
-def _yaml_loader():
-    # PyYAML is imported on first use: most inputs are JSON.
-    import yaml
+class _JsonKindsLoader(yaml.SafeLoader):
+    """The safe loader without aliases (a few bytes of them expand to millions of values)
+    and without dates, which JSON does not have (they stay text)."""
 
-    class JsonKindsLoader(yaml.SafeLoader):
-        """The safe loader without aliases (a few bytes of them expand to millions of
-        values) and without dates, which JSON does not have (they stay text)."""
+    def compose_node(self, parent, index):
+        if self.check_event(yaml.AliasEvent):
+            raise yaml.composer.ComposerError(
+                None, None, 'YAML aliases (*name) are not accepted',
+                self.peek_event().start_mark)
+        return super().compose_node(parent, index)
 
-        def compose_node(self, parent, index):
-            if self.check_event(yaml.AliasEvent):
-                raise yaml.composer.ComposerError(
-                    None, None, 'YAML aliases (*name) are not accepted',
-                    self.peek_event().start_mark)
-            return super().compose_node(parent, index)
 
-    JsonKindsLoader.yaml_implicit_resolvers = {
-        first: [(tag, rx) for tag, rx in resolvers if not tag.endswith(':timestamp')]
-        for first, resolvers in yaml.SafeLoader.yaml_implicit_resolvers.items()}
-    return JsonKindsLoader
+_JsonKindsLoader.yaml_implicit_resolvers = {
+    first: [(tag, rx) for tag, rx in resolvers if not tag.endswith(':timestamp')]
+    for first, resolvers in yaml.SafeLoader.yaml_implicit_resolvers.items()}
 
 
 def _check_json_kinds(value: Any) -> None:

@@ -34,6 +34,7 @@ from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
+from rclpy.utilities import remove_ros_args
 from std_msgs.msg import ColorRGBA, String
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker, MarkerArray
@@ -297,7 +298,6 @@ def usage() -> str:
 def _command_line(args: list[str] | None) -> int | None:
     """Handle what is not a ROS argument: --help prints the usage (exit 0); anything else is
     a mistake said in one line (exit 2). None when there is nothing to handle."""
-    from rclpy.utilities import remove_ros_args
     rest = remove_ros_args(sys.argv if args is None else ['scene_synth_node', *args])[1:]
     if not rest:
         return None

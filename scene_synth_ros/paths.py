@@ -20,8 +20,8 @@ def share_dir() -> Path:
     """
     if (_SOURCE_ROOT / 'msg_schemas').is_dir() and (_SOURCE_ROOT / 'package.xml').is_file():
         return _SOURCE_ROOT
-    try:  # ament_index is only there on a ROS install; the library must work without it
-        from ament_index_python.packages import get_package_share_directory
+    try:
+        from ament_index_python.packages import get_package_share_directory  # ROS installs only
         return Path(get_package_share_directory(PACKAGE))
     except Exception:
         pass

@@ -29,9 +29,12 @@ from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.figure import Figure
 from matplotlib.patches import Arc, Patch
 from matplotlib.patches import Polygon as PolygonPatch
+from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
 import numpy as np
+from shapely import get_parts
 
 from .categories import CATEGORIES, PAPER, Vocabulary
+from .rules.robot import driven_floor, report
 from .scene import Room, Scene
 
 FLOOR_COLOR = '#e4e4e4'
@@ -170,7 +173,6 @@ def draw_scene(scene: Scene, ax=None, legend: bool = True, title: str | None = N
     if title:
         ax.set_title(title, fontsize=10)
     if scale_bar:
-        from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
         ax.add_artist(AnchoredSizeBar(ax.transData, 1.0, '1 m', 'lower right', pad=0.3,
                                       borderpad=0.3, sep=2, frameon=False, size_vertical=0.03,
                                       fontproperties={'size': 7}))
@@ -249,9 +251,6 @@ def save_reach_png(scene: Scene, robot, path: str | os.PathLike, dpi: int = DEFA
     """The robot promise drawn (``robot.report``): the floor the robot's body drives over
     from the doors in green, the objects it cannot reach outlined in red, the verdict as the
     title."""
-    from shapely import get_parts
-
-    from .rules.robot import driven_floor, report
     found = report(scene, robot)
     fig = Figure(figsize=DEFAULT_FIGSIZE, dpi=dpi)
     ax = fig.add_axes((0.08, 0.08, 0.6, 0.84))

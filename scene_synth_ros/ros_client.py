@@ -18,6 +18,7 @@ import uuid
 
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Point32, PolygonStamped, PoseArray
+from rcl_interfaces.msg import Parameter as ParameterMsg
 import rclpy
 from rclpy.context import Context
 from rclpy.executors import SingleThreadedExecutor
@@ -30,6 +31,7 @@ from std_srvs.srv import Trigger
 from visualization_msgs.msg import MarkerArray
 
 from .errors import SceneSynthError
+from .schema import SceneValidationError, parse_room_layout, read_payload
 
 DEFAULT_NODE = '/scene_synth_node'
 
@@ -174,7 +176,6 @@ class SceneSynthClient:
         the same sentence the node would log. With ``wait``, a valid layout without a
         ``request_id`` is sent as JSON with a new one, and the answer is the scene that
         carries it; without, the text is sent as given."""
-        from .schema import SceneValidationError, parse_room_layout, read_payload
         text = layout if isinstance(layout, str) else json.dumps(layout)
         request_id = None
         if check or wait:
@@ -283,7 +284,6 @@ class SceneSynthClient:
 
 
 def _named(name, value):
-    from rcl_interfaces.msg import Parameter as ParameterMsg
     return ParameterMsg(name=name, value=value)
 
 

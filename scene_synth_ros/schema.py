@@ -32,7 +32,11 @@ from pathlib import Path
 import re
 from typing import Any, Iterable
 
+from jsonschema import Draft202012Validator
+from jsonschema.exceptions import best_match
 import numpy as np
+from referencing import Registry
+from referencing.jsonschema import DRAFT202012
 import shapely
 
 from . import catalog
@@ -213,10 +217,6 @@ def _schemas() -> dict[str, dict[str, Any]]:
 
 @lru_cache(maxsize=None)
 def _validator(key: str):
-    from jsonschema import Draft202012Validator
-    from referencing import Registry
-    from referencing.jsonschema import DRAFT202012
-
     schemas = _schemas()
     # No ``retrieve`` callable: a reference outside these three documents is an error,
     # never a download.
@@ -273,8 +273,6 @@ def _schema_error_message(error, prefix: str) -> tuple[str, str]:
 
 
 def check_against_schema(d: Any, key: str, prefix: str = '') -> None:
-    from jsonschema.exceptions import best_match
-
     error = best_match(_validator(key).iter_errors(d))
     if error is not None:
         path, message = _schema_error_message(error, prefix)

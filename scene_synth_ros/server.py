@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, fields, replace
 import itertools
+import json
 import os
 from pathlib import Path
 import textwrap
@@ -23,6 +24,7 @@ import threading
 import time
 from typing import Any, Callable
 
+import torch
 import yaml
 
 from .catalog import PROCEDURAL, Catalog
@@ -37,7 +39,7 @@ from .errors import (
     with_article,
 )
 from .export import FORMATS as EXPORT_FORMATS
-from .export import UnknownFormat, parse_formats
+from .export import UnknownFormat, parse_formats, write
 from .files import write_atomic
 from .markers import MARKER_STYLES
 from .networks.config import resolve_device
@@ -324,7 +326,6 @@ class SceneServer:
         for f in fields(ServerConfig):
             if f.name not in BY_WEIGHTS:
                 setattr(config, f.name, check(f.name, getattr(config, f.name)))
-        import torch
         torch.set_num_threads(config.torch_threads)
         self._synth = self._load(config.weights_dir, config.device, config.runtime)
         for name in BY_WEIGHTS:
@@ -686,13 +687,12 @@ class SceneServer:
     def _export(self, served: Served, directory: Path) -> None:
         """Write the room as JSON and in every one of ``export_formats`` (mesh files shared
         in ``meshes/``); a failure is reported, not fatal."""
-        from .export import FORMATS, parse_formats, write
         stem = f'room_{self.status.rooms_served:05d}'
         try:
             directory.mkdir(parents=True, exist_ok=True)
             write_atomic(directory / f'{stem}.json', served.json + '\n')
             for fmt in parse_formats(self.config.export_formats):
-                write(served.scene, fmt, directory / f'{stem}{FORMATS[fmt].suffix}',
+                write(served.scene, fmt, directory / f'{stem}{EXPORT_FORMATS[fmt].suffix}',
                       directory / 'meshes', catalog=served.catalog)
         except (OSError, CatalogError) as e:    # CatalogError: a user's mesh gone since
             text = f'export to {directory} failed: {getattr(e, "strerror", None) or e}'
@@ -764,5 +764,4 @@ def _answered(meta: dict) -> dict:
 
 
 def _json(d: dict) -> str:
-    import json
     return json.dumps(d, separators=(', ', ': '), allow_nan=False)

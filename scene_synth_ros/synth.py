@@ -72,6 +72,7 @@ from .networks.loaded import LoadedNetworks
 from .networks.location import LocationDraws, location_distribution
 from .networks.orientation import decode_angle, snap_angle
 from .networks.runtime import OnnxCalls
+from .paths import weights_dir as shipped_weights_dir
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer, quarter_turns, turn_image
 from .rules import groups, robot
 from .rules.insertion import INSERTION_RULES, rule_categories, verdicts
@@ -243,8 +244,7 @@ class Synthesizer:
     def __init__(self, weights_dir: str | Path | None = None,
                  config: SynthConfig | None = None,
                  observer: SynthesisObserver | None = None):
-        from .paths import weights_dir as default_weights
-        self.weights_dir = Path(weights_dir) if weights_dir else default_weights()
+        self.weights_dir = Path(weights_dir) if weights_dir else shipped_weights_dir()
         self.config = config or SynthConfig()
         self.observer = observer
         _check_rules(self.config)

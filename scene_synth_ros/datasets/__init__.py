@@ -15,6 +15,8 @@ Modules, one job each:
 
 Command line: ``scene-synth import {3dfront,suncg,procthor} INPUT... --out DIR``.
 """
+from importlib import import_module
+
 __all__ = ['FORMATS', 'ImportConfig', 'ImportResult', 'import_dataset', 'load_room_types']
 
 # Loaded on first use: the command line reads ``config`` for its defaults when it builds
@@ -25,6 +27,5 @@ _LAZY = {'FORMATS': 'config', 'ImportConfig': 'config', 'load_room_types': 'conf
 
 def __getattr__(name):
     if name in _LAZY:
-        from importlib import import_module
         return getattr(import_module(f'{__name__}.{_LAZY[name]}'), name)
     raise AttributeError(f'module {__name__!r} has no attribute {name!r}')

@@ -38,9 +38,11 @@ from typing import Any, Iterable
 
 import numpy as np
 from shapely.geometry import LineString, Point, Polygon
+import yaml
 
 from ..categories import ROLES, roles_of
 from ..errors import DatasetError, quoted
+from ..files import write_atomic
 from ..scene import Room
 from .assemble import room_span
 from .config import ImportConfig
@@ -220,9 +222,6 @@ HEADER = """\
 
 
 def write(desc: dict[str, Any], path: Path) -> None:
-    import yaml
-
-    from ..files import write_atomic
     write_atomic(path, HEADER + yaml.safe_dump(desc, sort_keys=False, allow_unicode=True,
                                                width=100, default_flow_style=None))
 
@@ -267,7 +266,6 @@ class DatasetDescription:
 
 def load(path: str | Path) -> DatasetDescription:
     """Read and check a description file; any problem is one sentence naming the field."""
-    import yaml
     path = Path(path)
     try:
         data = yaml.safe_load(path.read_text(encoding='utf-8'))

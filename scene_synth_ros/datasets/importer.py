@@ -16,7 +16,9 @@ import re
 from typing import Any, Iterator, Sequence
 
 from ..errors import DatasetError
-from . import front3d, procthor, suncg
+from ..files import write_atomic
+from ..schema import format_json
+from . import description, front3d, procthor, suncg
 from .assemble import assemble
 from .config import FORMATS, ImportConfig, load_room_types
 from .models import AssetBoxes, ModelBoxes, ModelCategories
@@ -90,7 +92,6 @@ def import_dataset(fmt: str, inputs: Sequence[str | Path], out: str | Path | Non
     scenes are written there as they come, with ``report.txt``/``report.json`` and
     ``dataset.yaml`` at the end; ``result.scenes`` holds them when ``keep_scenes`` (by
     default only without ``out``: a large data set need not fit in memory)."""
-    from . import description
     if fmt not in FORMATS:
         raise DatasetError(f'unknown format {fmt!r}; expected one of {", ".join(FORMATS)}')
     config = config or ImportConfig()
@@ -190,6 +191,4 @@ def _unique(name: str, taken: set[str]) -> str:
 
 
 def _write_scene(out: Path, name: str, scene: dict[str, Any]) -> None:
-    from ..files import write_atomic
-    from ..schema import format_json
     write_atomic(out / f'{name}.json', format_json(scene) + '\n')

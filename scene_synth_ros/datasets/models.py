@@ -130,7 +130,7 @@ class ModelBoxes:
 
 @lru_cache(maxsize=4096)
 def _mesh_bounds(path: str) -> tuple[np.ndarray, np.ndarray] | None:
-    import trimesh
+    import trimesh  # heavy: only an import given a model folder reads meshes
     if not Path(path).is_file():
         return None
     try:

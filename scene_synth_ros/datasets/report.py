@@ -10,9 +10,11 @@ from __future__ import annotations
 
 from collections import Counter
 from dataclasses import dataclass, field
+import json
 from pathlib import Path
 
 from ..errors import sentence
+from ..files import write_atomic
 
 MAX_LINE = 300          # characters of a report line
 
@@ -101,9 +103,6 @@ class ImportReport:
 
     def write(self, folder: Path) -> tuple[Path, Path]:
         """``report.txt`` and ``report.json`` in ``folder``."""
-        import json
-
-        from ..files import write_atomic
         txt, js = folder / 'report.txt', folder / 'report.json'
         write_atomic(txt, self.text())
         write_atomic(js, json.dumps(self.to_dict(), indent=1, ensure_ascii=False) + '\n')

@@ -125,7 +125,7 @@ def _floor_mesh(models: ModelBoxes | None, house: str, model_id: str,
     path = models.root / 'room' / house / f'{model_id}f.obj'
     if not path.is_file():
         return None
-    import trimesh
+    import trimesh  # heavy: only an import given SUNCG's room meshes reads them
     try:
         mesh = trimesh.load(path, force='mesh', process=False)
         v = (C @ np.asarray(mesh.vertices, dtype=float).T).T

@@ -16,13 +16,6 @@ with ``data`` (the rooms compared), ``perturb`` (the perturbed-corpus baseline),
 are ``scene-synth evaluate --data``: synthesized rooms against the rooms of an imported data
 set that training held out.
 """
+from .run import EvalConfig, EvaluationError, run_evaluation
+
 __all__ = ['EvalConfig', 'EvaluationError', 'run_evaluation']
-
-
-def __getattr__(name: str):
-    # Imported on first use, not with the package: the corpus furnishes rooms by the design
-    # rules (``design_rules``), and ``run`` imports the corpus and torch.
-    if name in __all__:
-        from . import run
-        return getattr(run, name)
-    raise AttributeError(f'module {__name__!r} has no attribute {name!r}')

@@ -16,6 +16,7 @@ from tqdm import tqdm
 from ..corpus import HELDOUT_SEED
 from ..corpus.generate import empty_room, generate_corpus
 from ..scene import Scene
+from ..synth import Synthesizer
 from .parallel import pmap
 
 CORPUS_SEED = 0
@@ -48,7 +49,6 @@ _WARM: set[str] = set()
 
 def _init_synthesizer(weights_dir) -> None:
     global _SYNTH
-    from ..synth import Synthesizer
     _SYNTH = Synthesizer(weights_dir)
     _WARM.clear()
 

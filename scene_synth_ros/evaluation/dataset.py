@@ -24,16 +24,22 @@ from contextlib import ExitStack
 from dataclasses import asdict, dataclass
 from pathlib import Path
 import time
-from typing import TYPE_CHECKING, Sequence
+from typing import Sequence
 
+import torch
+
+from .. import rules as design_rules
 from ..categories import PAPER, ROOM_TYPE_ALIASES, RoomTypeSpec, Vocabulary, kl_divergence
+from ..datasets.training import describe_dir, room_type_spec, split_rooms
 from ..errors import DatasetError, RoomTypeConflict
+from ..networks.bundle import BundleError, bundle_path, bundle_specs, load_bundle
 from ..scene import Scene
+from ..synth import SynthConfig, SynthesisError, Synthesizer
+from . import dataset_report, plausibility, speed
 from .data import SynthRecord
+from .distribution import distribution, frequencies
+from .parallel import pmap
 from .run import EvalEcho, EvaluationError, prepare_out_dir
-
-if TYPE_CHECKING:
-    from ..synth import SynthConfig
 
 SEED_STRIDE = 100_000
 
@@ -75,7 +81,6 @@ class Split:
 
 # ---- input -------------------------------------------------------------------------------
 def _describe(data_dir: Path):
-    from ..datasets.training import describe_dir
     try:
         return describe_dir(data_dir)
     except DatasetError as e:
@@ -118,7 +123,6 @@ def choose_room_types(value: str, held: Sequence[str], bundles: dict, data_dir: 
 
 def _train_config(weights_dir: Path, room_type: str, vocabulary: Vocabulary):
     """The training configuration of a bundle: how it split the data set's rooms."""
-    from ..networks.bundle import BundleError, bundle_path, load_bundle
     try:
         return load_bundle(bundle_path(weights_dir, room_type, vocabulary)).config.train
     except BundleError as e:
@@ -129,7 +133,6 @@ def load_split(data_dir: Path, spec: RoomTypeSpec, train_cfg, rooms: int) -> Spl
     """The training and held-out rooms of ``spec``'s room type, divided by the code that
     divides them for training (``datasets.training.split_rooms``) with the bundle's corpus
     seed and sizes; ``rooms``: how many the data set holds (its description says)."""
-    from ..datasets.training import split_rooms
     d = split_rooms(data_dir, spec, train_cfg.corpus_seed, train_cfg.train_rooms,
                     train_cfg.val_rooms)
     if not d.held_out:
@@ -140,7 +143,6 @@ def load_split(data_dir: Path, spec: RoomTypeSpec, train_cfg, rooms: int) -> Spl
 
 
 def _data_spec(desc, room_type: str) -> RoomTypeSpec | None:
-    from ..datasets.training import room_type_spec
     try:
         return room_type_spec(desc.room_types[room_type], desc.format)
     except DatasetError:
@@ -153,7 +155,6 @@ _SYNTH = None
 
 def _init_synthesizer(weights_dir, synth_cfg) -> None:
     global _SYNTH
-    from ..synth import Synthesizer
     # One per process (a worker too); it knows the weights' room types (its vocabulary).
     _SYNTH = Synthesizer(weights_dir, synth_cfg)
     _SYNTH.load_all()           # so that no room's seconds include loading its bundle
@@ -161,7 +162,6 @@ def _init_synthesizer(weights_dir, synth_cfg) -> None:
 
 def _furnish(job) -> SynthRecord | str:
     """One shell furnished, or why it could not be (the room is then left out)."""
-    from ..synth import SynthesisError
     index, room, seed = job
     try:
         r = _SYNTH.generate(room, seed=seed)
@@ -174,7 +174,6 @@ def synthesize_shells(split: Split, cfg: DataEvalConfig, weights_dir: Path, work
                       progress: bool = True) -> tuple[list[dict], list[SynthRecord], list[dict]]:
     """The held-out shells furnished ``cfg.rooms_per_shell`` times each: a row per
     synthesized room, the rooms, and a row per shell copy that failed."""
-    from .parallel import pmap
     k = cfg.rooms_per_shell
     jobs = [(i * k + c, split.heldout[i].room, cfg.seed_of(i, c))
             for i in range(len(split.heldout)) for c in range(k)]
@@ -201,7 +200,6 @@ def compare_categories(spec: RoomTypeSpec, synth: Sequence[Scene], heldout: Sequ
                        training: Sequence[Scene]) -> dict:
     """KL(group || held-out) of the synthesized and the training rooms (and of a uniform
     guess over the category set), objects per room, and per-category frequencies."""
-    from .distribution import distribution, frequencies
     ref = distribution(heldout)
 
     def kl(p: dict) -> float | None:
@@ -228,7 +226,6 @@ def compare_categories(spec: RoomTypeSpec, synth: Sequence[Scene], heldout: Sequ
 
 def validity(groups: dict[str, Sequence[Scene]]) -> dict:
     """The paper-corpus evaluation's validity checks (``plausibility``) of each group."""
-    from . import plausibility
     return {name: plausibility.summarize(plausibility.room_metrics(s) for s in scenes)
             for name, scenes in groups.items()}
 
@@ -237,7 +234,6 @@ def rule_report(heldout: Sequence[Scene], synth: Sequence[Scene],
                 vocabulary: Vocabulary = PAPER) -> dict:
     """Every design rule in the held-out rooms (the ``corpus`` side of the record) and in
     the synthesized ones, whose categories are those of ``vocabulary``."""
-    from .. import rules as design_rules
     return design_rules.summarize(
         [design_rules.measure(s, vocabulary=vocabulary) for s in heldout],
         [design_rules.measure(s, vocabulary=vocabulary) for s in synth])
@@ -247,7 +243,6 @@ def evaluate_data_room_type(split: Split, spec: RoomTypeSpec, cfg: DataEvalConfi
                             weights_dir: Path, workers: int = 1, progress: bool = True,
                             echo: EvalEcho = print) -> dict:
     """Every measurement of one room type against its held-out rooms."""
-    from . import speed
     stages: dict[str, float] = {}
     clock = time.perf_counter()
 
@@ -281,7 +276,6 @@ def evaluate_data_room_type(split: Split, spec: RoomTypeSpec, cfg: DataEvalConfi
 
 # ---- the run -----------------------------------------------------------------------------
 def _bundle_specs(weights_dir: Path) -> dict[str, RoomTypeSpec | None]:
-    from ..networks.bundle import bundle_specs
     if not weights_dir.is_dir():
         raise EvaluationError(f'{weights_dir}: no such weights directory')
     return bundle_specs(weights_dir)
@@ -296,9 +290,6 @@ def run_data_evaluation(data_dir: str | Path, weights_dir: str | Path, room_type
     data set ``data_dir`` and write ``out/index.md`` and ``out/results.json`` (and the
     Markdown to ``markdown_copy`` too). Raises ``EvaluationError`` for bad input before any
     long computation. The room types and categories are those the weights were trained on."""
-    import torch
-
-    from . import dataset_report, speed
     cfg = cfg or DataEvalConfig()
     cfg.validate()
     data_dir, weights_dir = Path(data_dir), Path(weights_dir)

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 from typing import Callable, Iterable, Sequence
 
+import torch
 from tqdm import tqdm
 
 from ..parallel import process_pool
 
 
 def _single_thread_torch() -> None:
-    import torch
     torch.set_num_threads(1)
 
 

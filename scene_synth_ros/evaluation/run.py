@@ -12,11 +12,26 @@ import time
 from typing import Callable, Sequence
 
 import numpy as np
+import torch
 
 from .. import rules as design_rules
 from ..categories import ROOM_TYPES, resolve_room_type
 from ..corpus import HELDOUT_SEED
 from ..errors import SceneSynthError
+from ..networks.bundle import BundleError, bundle_path, load_bundle
+from ..paths import weights_dir as default_weights
+from . import (
+    classifier,
+    components,
+    data,
+    distribution,
+    figures,
+    plausibility,
+    report,
+    similarity,
+    speed,
+)
+from .parallel import pmap
 from .perturb import perturb_all, perturbation_key
 
 EvalEcho = Callable[[str], None]
@@ -97,8 +112,6 @@ def prepare_out_dir(out: str | Path) -> Path:
 def _load_bundles(room_types: Sequence[str], weights_dir) -> dict:
     """Per room type, the shipped bundle's input resolution and component metrics; bad or
     missing weights are found here, before any long computation."""
-    from ..networks.bundle import BundleError, bundle_path, load_bundle
-    from ..paths import weights_dir as default_weights
     root = Path(weights_dir) if weights_dir else default_weights()
     out = {}
     for rt in room_types:
@@ -126,18 +139,6 @@ def evaluate_room_type(room_type: str, cfg: EvalConfig, out: Path, bundle: dict,
                        workers: int = 1, weights_dir=None, progress: bool = True,
                        echo: EvalEcho = print) -> dict:
     """Every measurement of one room type; writes its figures into ``out``."""
-    from . import (
-        classifier,
-        components,
-        data,
-        distribution,
-        figures,
-        plausibility,
-        similarity,
-        speed,
-    )
-    from .parallel import pmap
-
     rt = resolve_room_type(room_type)
     k_rt = ROOM_TYPES.index(rt)
     stages: dict[str, float] = {}
@@ -234,9 +235,6 @@ def run_evaluation(room_types: Sequence[str], cfg: EvalConfig, out: str | Path,
     """Evaluate ``room_types`` and write ``out/index.md``, ``out/results.json`` and the
     figures (and the Markdown also to ``markdown_copy``, linking to the figures in ``out``).
     Raises ``EvaluationError`` for bad input before any long computation."""
-    import torch
-
-    from . import report, speed
     rts = [resolve_room_type(rt) for rt in room_types]
     try:
         cfg.validate()

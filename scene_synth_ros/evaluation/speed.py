@@ -6,6 +6,8 @@ import platform
 import statistics
 from typing import Sequence
 
+import torch
+
 from ..synth import MODULES
 from .data import SynthRecord
 
@@ -23,7 +25,6 @@ def cpu_model() -> str:
 
 
 def hardware(workers: int) -> dict:
-    import torch
     return {'cpu': cpu_model(), 'machine': platform.machine(), 'cores': os.cpu_count(),
             'workers': workers, 'torch_threads_per_worker': 1,
             'torch': torch.__version__, 'python': platform.python_version()}

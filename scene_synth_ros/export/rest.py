@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from .physics import GRAVITY
+from .urdf import poses_path
 
 
 @dataclass(frozen=True)
@@ -76,7 +77,7 @@ def _box_corners(centre, half, rotation: np.ndarray, position) -> np.ndarray:
 # ---- MuJoCo -------------------------------------------------------------------------------
 def mujoco_rest(path: str | Path, seconds: float = 2.0) -> RestReport:
     """Simulate the MJCF model at ``path`` and measure every body with a free joint."""
-    import mujoco
+    import mujoco  # optional: only the MuJoCo rest test needs the engine
     model = mujoco.MjModel.from_xml_path(str(path))
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
@@ -112,9 +113,7 @@ def load_pybullet(path: str | Path, client: int) -> dict[str, int]:
 
     Inertia comes from the files (``URDF_USE_INERTIA_FROM_FILE``: without it PyBullet
     recomputes it from the collision shapes)."""
-    import pybullet
-
-    from .urdf import poses_path
+    import pybullet  # optional: only the PyBullet rest test needs the engine
     path = Path(path)
     pybullet.loadURDF(str(path), useFixedBase=True, physicsClientId=client)
     poses = json.loads(poses_path(path).read_text())
@@ -154,7 +153,7 @@ def pybullet_rest(path: str | Path, seconds: float = 2.0, timestep: float = 1 / 
                   ) -> RestReport:
     """Simulate a URDF export in PyBullet (DIRECT mode, 240 Hz, its default solver) and
     measure every object that is not fixed."""
-    import pybullet
+    import pybullet  # optional: only the PyBullet rest test needs the engine
     client = pybullet.connect(pybullet.DIRECT)
     try:
         pybullet.setGravity(0, 0, -GRAVITY, physicsClientId=client)

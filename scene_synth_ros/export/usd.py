@@ -34,7 +34,7 @@ from .usd_prims import identifier, mesh, surface
 
 
 def _place(xformable, translate, yaw: float = 0.0, scale=None) -> None:
-    from pxr import Gf
+    from pxr import Gf  # usd-core: USD exports only
     xformable.AddTranslateOp().Set(Gf.Vec3d(*(float(v) for v in translate)))
     xformable.AddRotateZOp().Set(math.degrees(yaw))
     if scale is not None:
@@ -42,7 +42,7 @@ def _place(xformable, translate, yaw: float = 0.0, scale=None) -> None:
 
 
 def _collider(stage, path: str, centre, yaw: float, size, physics_material):
-    from pxr import UsdGeom, UsdPhysics, UsdShade
+    from pxr import UsdGeom, UsdPhysics, UsdShade  # usd-core: USD exports only
     cube = UsdGeom.Cube.Define(stage, path)
     cube.CreateSizeAttr(1.0)
     _place(cube, centre, yaw, size)
@@ -53,7 +53,7 @@ def _collider(stage, path: str, centre, yaw: float, size, physics_material):
 
 
 def _room(stage, scene: Scene, physics_material) -> None:
-    from pxr import UsdGeom, UsdPhysics, UsdShade
+    from pxr import UsdGeom, UsdPhysics, UsdShade  # usd-core: USD exports only
     UsdGeom.Xform.Define(stage, '/World/Room')
     floor_look = surface(stage, '/World/Looks/floor', FLOOR_RGBA, 0.0, 0.9)
     wall_look = surface(stage, '/World/Looks/wall', WALL_RGBA, 0.0, 0.9)
@@ -72,7 +72,7 @@ def _room(stage, scene: Scene, physics_material) -> None:
 
 def _object(stage, path: str, body: Body, model_file: str, fixed: bool,
             physics_material) -> None:
-    from pxr import Gf, Sdf, UsdGeom, UsdPhysics
+    from pxr import Gf, Sdf, UsdGeom, UsdPhysics  # usd-core: USD exports only
     xform = UsdGeom.Xform.Define(stage, path)
     _place(xform, body.position, body.yaw)
     prim = xform.GetPrim()
@@ -104,7 +104,7 @@ def export_usd(scene: Scene, path: str | Path, mesh_dir: str | Path | None = Non
     binary); each catalog model goes to ``mesh_dir`` (default ``<stem>_meshes/`` beside the
     file) as a ``.usdc`` layer the stage references by relative path. ``fixed`` makes the
     furniture static colliders instead of rigid bodies."""
-    from pxr import Gf, Sdf, Tf, Usd, UsdGeom, UsdPhysics, UsdShade
+    from pxr import Gf, Sdf, Tf, Usd, UsdGeom, UsdPhysics, UsdShade  # usd-core: USD exports only
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     meshes = MeshFolder(mesh_dir or path.parent / f'{path.stem}_meshes', path.parent)

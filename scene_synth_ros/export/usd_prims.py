@@ -18,7 +18,7 @@ from ..meshes import MATERIALS, material_meshes
 
 def identifier(text: str, taken: set[str]) -> str:
     """A prim name for ``text``, unique among ``taken``."""
-    from pxr import Tf
+    from pxr import Tf  # usd-core: USD exports only
     name = Tf.MakeValidIdentifier(text)
     out, k = name, 1
     while out in taken:
@@ -28,7 +28,7 @@ def identifier(text: str, taken: set[str]) -> str:
 
 
 def surface(stage, path: str, rgba, metallic: float, roughness: float):
-    from pxr import Gf, Sdf, UsdShade
+    from pxr import Gf, Sdf, UsdShade  # usd-core: USD exports only
     material = UsdShade.Material.Define(stage, path)
     shader = UsdShade.Shader.Define(stage, f'{path}/Surface')
     shader.CreateIdAttr('UsdPreviewSurface')
@@ -41,7 +41,7 @@ def surface(stage, path: str, rgba, metallic: float, roughness: float):
 
 
 def mesh(stage, path: str, vertices, faces):
-    from pxr import UsdGeom, Vt
+    from pxr import UsdGeom, Vt  # usd-core: USD exports only
     prim = UsdGeom.Mesh.Define(stage, path)
     vertices = np.asarray(vertices, dtype=float)
     prim.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(vertices.astype(np.float32)))
@@ -55,7 +55,7 @@ def mesh(stage, path: str, vertices, faces):
 def model_layer_bytes(variant: ModelVariant) -> bytes:
     """The catalog model as a USD crate file: ``/Model`` (the default prim) with one mesh
     per material, bound to ``/Model/Looks/<material>``."""
-    from pxr import Usd, UsdGeom, UsdShade
+    from pxr import Usd, UsdGeom, UsdShade  # usd-core: USD exports only
     stage = Usd.Stage.CreateInMemory()
     UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.z)
     UsdGeom.SetStageMetersPerUnit(stage, 1.0)

@@ -119,9 +119,9 @@ def render_image(variant: ModelVariant, px: int = 320, elev: float = 22.0,
 def render_preview(variant: ModelVariant, path: str | Path, size_px: int = 400) -> Path:
     """Draw ``variant`` from a front three-quarter view (camera on the +x, +y side, a
     little above) into a labelled PNG, using matplotlib's Agg backend."""
-    import matplotlib
+    import matplotlib  # heavy: every export loads meshes/, only previews draw
     matplotlib.use('Agg')
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # after use('Agg'): no display needed
 
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -138,9 +138,9 @@ def render_preview(variant: ModelVariant, path: str | Path, size_px: int = 400) 
 def save_contact_sheet(path: str | Path, variants: Sequence[ModelVariant] | None = None,
                        columns: int = 8, panel_px: int = 200) -> Path:
     """A labelled grid of previews, by default one variant per category (styles mixed)."""
-    import matplotlib
+    import matplotlib  # heavy: every export loads meshes/, only previews draw
     matplotlib.use('Agg')
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # after use('Agg'): no display needed
 
     if variants is None:
         variants = [catalog.variants(c)[3 + i % 3] for i, c in enumerate(CATEGORIES)]

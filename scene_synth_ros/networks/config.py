@@ -178,7 +178,7 @@ def _build(cls, data: Any, where: str, base=None):
 
 def resolve_device(name: str):
     """A torch device for ``cpu | cuda | auto`` (auto: cuda when available)."""
-    import torch
+    import torch  # heavy: scene-synth --help reads this module, only a device needs torch
     if name == 'auto':
         return torch.device('cuda' if torch.cuda.is_available() else 'cpu')
     if name == 'cuda' and not torch.cuda.is_available():
@@ -194,7 +194,7 @@ RUNTIMES = ('auto', 'torch', 'onnxruntime')
 
 def onnxruntime_available() -> bool:
     try:
-        import onnxruntime  # noqa: F401
+        import onnxruntime  # noqa: F401  optional: probed, not used
     except ImportError:
         return False
     return True

@@ -52,6 +52,7 @@ import numpy as np
 import torch
 from torch import nn
 
+from .. import __version__
 from ..files import write_atomic
 from .blocks import ResNetEncoder
 
@@ -103,7 +104,6 @@ def _networks_code_hash() -> str:
     """A hash of this package's version and network code (the directory of this module,
     sources or, where an install kept only those, compiled files): a graph exported by
     other code is not this code's graph, whatever the weights."""
-    from .. import __version__
     h = hashlib.sha256(__version__.encode() + b'\0')
     here = Path(__file__).resolve().parent
     for path in sorted(here.glob('*.py')) or sorted(here.glob('*.pyc')):
@@ -288,7 +288,7 @@ def _turn_per_stem(graph: bytes) -> bytes:
     """``graph`` with a Transpose read by several nodes repeated for each of them: the
     exporter merges the stems' identical turns of one image (``_Stem``) into one, which
     onnxruntime can then fuse into none of the stems' reorderings."""
-    import onnx
+    import onnx  # optional: only exporting a graph for onnxruntime needs it
     model = onnx.load_from_string(graph)
     readers: dict[str, list] = {}
     for node in model.graph.node:
@@ -341,7 +341,7 @@ def _graph_networks(networks: dict, module: str, channels: int) -> dict:
 def _session(graph: bytes, module: str):
     """An onnxruntime session running ``graph``, ``module``'s call, with as many threads as
     torch has."""
-    import onnxruntime
+    import onnxruntime  # optional: the torch runtime runs without it
     options = onnxruntime.SessionOptions()
     options.intra_op_num_threads = torch.get_num_threads()
     options.inter_op_num_threads = 1

@@ -16,10 +16,12 @@ from typing import Callable
 import numpy as np
 import torch
 from torch import nn
+from tqdm import tqdm
 
 from ..catalog import variants
 from ..categories import PAPER, Vocabulary
 from ..corpus.generate import generate_corpus
+from ..datasets.training import describe_dir, room_type_specs, split_rooms
 from ..files import writing_together
 from ..scene import Scene
 from . import COMPONENT_ROWS, NETWORKS
@@ -51,7 +53,6 @@ def data_vocabulary(data_dir: Path | None) -> Vocabulary:
     data set's category sets; the paper's alone without one."""
     if data_dir is None:
         return PAPER
-    from ..datasets.training import describe_dir, room_type_specs
     return PAPER.with_specs(room_type_specs(describe_dir(data_dir)).values())
 
 
@@ -62,7 +63,6 @@ def load_corpus(room_type: str, cfg: PipelineConfig, workers: int | None = None,
     corpus seed shuffles; at most N training and V held-out rooms)."""
     t = cfg.train
     if data_dir is not None:
-        from ..datasets.training import split_rooms
         data = split_rooms(data_dir, data_vocabulary(data_dir).spec(room_type), t.corpus_seed,
                            t.train_rooms, t.val_rooms)
         return RoomCorpus(data.train, data.held_out)
@@ -232,7 +232,6 @@ def train_module(module: str, net: nn.Module, source: ExampleSource, val: Exampl
     """Train ``module`` from its last checkpoint in ``run_dir`` (if any) to the end of its
     schedule and return its held-out metrics; with ``until``, stop after that step (saving a
     checkpoint) and return None, as an interrupted run would."""
-    from tqdm import tqdm
     t = cfg.train
     sched: ModuleSchedule = getattr(t, module)
     net.to(device).train()
@@ -447,7 +446,6 @@ def train(types: list[str] | None, cfg: PipelineConfig, run_root: Path, weights_
     if unknown:
         raise ValueError(f'unknown module {unknown[0]!r}; expected some of {", ".join(NETWORKS)}')
     if data_dir is not None:
-        from ..datasets.training import describe_dir, room_type_specs
         specs = room_type_specs(describe_dir(data_dir))
         if types is None:
             types = list(specs)
