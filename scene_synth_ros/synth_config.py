@@ -102,12 +102,12 @@ def _check_number(label: str, value: Any, s: Setting) -> int | float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ConfigError(f'{label} must be a number, got {quoted(value)}')
     try:
-        number = float(value)
+        as_float = float(value)
     except OverflowError:                   # an integer past what a float holds
-        number = math.copysign(math.inf, value)
-    if s.kind is int and not number.is_integer():
+        as_float = math.copysign(math.inf, value)
+    if s.kind is int and not as_float.is_integer():
         raise ConfigError(f'{label} must be an integer, got {quoted(value)}')
-    if s.bounds is not None and not (math.isfinite(number)
+    if s.bounds is not None and not (math.isfinite(as_float)
                                      and s.bounds[0] <= value <= s.bounds[1]):
         raise ConfigError(f'{label} must be between {s.bounds[0]} and {s.bounds[1]}, '
                           f'got {quoted(value)}')
@@ -182,12 +182,12 @@ class SynthConfig:
         ('windows_clear', 'storage_clearance', 'wall_contact', 'fixture_clearance',
          'bath_in_corner', 'chair_at_table', 'nightstand_by_bed', 'bidet_by_toilet',
          'coffee_table_has_seating'),
-        'the design rules insertion keeps (names of synth.INSERTION_RULES)')
+        'the design rules insertion keeps (names of rules.insertion.INSERTION_RULES)')
     # A departure from the paper, as the rules kept at insertion are.
     owed_partners: tuple[str, ...] = setting(
         ('coffee_table_has_seating', 'double_bed_has_nightstand'),
         'group rules whose broken cases get one more draw among their partners when the '
-        'category module says STOP (names of groups.OWED_PARTNERS)')
+        'category module says STOP (names of rules.groups.OWED_PARTNERS)')
     device: str = setting('cpu', 'torch device for the networks', choices=DEVICES,
                           node=True, flag='--device')
     runtime: str = setting(
