@@ -165,3 +165,11 @@ def test_design_rules_tiny():
               '--refusals')
     assert 'rule x room-type targets met' in out
     assert '  rooms ended: STOP ' in out and ' stood, refused by ' in out
+
+
+@pytest.mark.slow
+def test_fingerprint_tiny():
+    out = run('fingerprint.py', '--rooms', '2', '--synthesized', '1')
+    lines = out.splitlines()
+    assert len(lines) == 28 and all(len(line.split()[-1]) == 16 for line in lines)
+    assert run('fingerprint.py', '--rooms', '2', '--synthesized', '1') == out   # same seed
