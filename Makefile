@@ -29,7 +29,7 @@ demo: install
 test: lint
 	$(PY) -m pytest -q
 
-# The lane for people working on the code: everything but the tests marked slow (< 1 min).
+# The lane for people working on the code: everything but the tests marked slow.
 test-fast: install
 	$(PY) -m pytest -q -m "not slow"
 

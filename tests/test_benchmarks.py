@@ -15,7 +15,7 @@ BENCHMARKS = Path(__file__).resolve().parent.parent / 'benchmarks'
 SCRIPTS = sorted(p.name for p in BENCHMARKS.glob('*.py') if p.name != 'benchlib.py')
 
 # Each script's main with --help, all in one process, so that torch and the package are
-# imported once rather than fifteen times (``make test-fast`` stays under a minute); with the
+# imported once rather than fifteen times (half a minute less of ``make test-fast``); with the
 # benchmarks' folder first on the path, as ``python benchmarks/NAME.py`` puts it.
 HELP_ALL = '''
 import contextlib, io, json, runpy, sys
