@@ -38,6 +38,7 @@ RULE_CATEGORIES: dict[str, frozenset[str]] = {
     'coffee_table_has_seating': frozenset(('coffee table',) + groups.LOUNGE_SEATS),
 }
 
+
 def rule_categories(rule: str, room_type: str, vocabulary: Vocabulary = PAPER
                     ) -> frozenset[str] | None:
     """The categories whose insertion can change ``rule``'s verdicts in a room of
