@@ -17,6 +17,9 @@ DOOR_ZONE_SIDE_MARGIN = 0.10    # ...and this much wider than the door on each s
 
 # ---- what a layout must be to be furnished (``schema``) --------------------------------
 MIN_FLOOR_AREA = 2.0            # m^2: a smaller floor is degenerate, not a room
+# m along a room's longer side, in its own axes (``render.room_frame_box``): the longest
+# rooms of real homes (open-plan living-dining rooms of 3D-FRONT reach 12 m) with a margin
+MAX_ROOM_SIDE = 16.0
 MIN_VERTEX_SPACING = 1e-3       # m: consecutive vertices closer than this repeat each other
 WALL_HEIGHT_RANGE = (1.8, 6.0)  # m, inclusive (also in room_layout.schema.json)
 OPENING_TOLERANCE = 0.01        # m: an opening's centre and ends may miss its wall by this

@@ -173,3 +173,18 @@ def test_fingerprint_tiny():
     lines = out.splitlines()
     assert len(lines) == 28 and all(len(line.split()[-1]) == 16 for line in lines)
     assert run('fingerprint.py', '--rooms', '2', '--synthesized', '1') == out   # same seed
+
+
+@pytest.mark.slow
+def test_real_rooms_tiny():
+    real = BENCHMARKS.parent.parent / 'shared' / 'data' / 'real'
+    if not real.is_dir():
+        pytest.skip(f'no real data in {real}')
+    out = run('real_rooms.py', str(real), '--formats', 'suncg,3dfront', '--limit', '2')
+    assert 'rooms of a known type not furnished validly: 0' in out
+
+
+@pytest.mark.slow
+def test_room_sizes_tiny():
+    out = run('room_sizes.py', '-n', '1', '--rooms', 'living:9x7')
+    assert 'living 9 m x 7 m' in out and ' 96 ' in out

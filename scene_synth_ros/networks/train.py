@@ -365,11 +365,14 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
         echo(f'{rt}: {len(corpus.train)} training and {len(corpus.val)} held-out rooms of '
              f'{data_dir}')
     m = cfg.model
-    source = ExampleSource(rt, corpus.train, m.resolution, m.location_resolution,
-                           target_radius=t.location_target_radius, vocabulary=vocabulary)
-    val = ExampleSource(rt, corpus.val, m.resolution, m.location_resolution,
-                        target_radius=t.location_target_radius, vocabulary=vocabulary)
     nets = build_networks(rt, m, seed=t.seed, vocabulary=vocabulary)
+    multiple = nets['location'].multiple
+    source = ExampleSource(rt, corpus.train, m.resolution, m.location_resolution,
+                           target_radius=t.location_target_radius, vocabulary=vocabulary,
+                           multiple=multiple)
+    val = ExampleSource(rt, corpus.val, m.resolution, m.location_resolution,
+                        target_radius=t.location_target_radius, vocabulary=vocabulary,
+                        multiple=multiple)
     if others_from is not None:
         _take_networks(nets, bundle_path(others_from, rt, vocabulary), m,
                        [n for n in NETWORKS if n not in modules])
