@@ -11,6 +11,8 @@ import sys
 
 import pytest
 
+from scene_synth_ros.home_tables import ROOMS_IN_TABLE
+
 BENCHMARKS = Path(__file__).resolve().parent.parent / 'benchmarks'
 SCRIPTS = sorted(p.name for p in BENCHMARKS.glob('*.py') if p.name != 'benchlib.py')
 
@@ -173,3 +175,20 @@ def test_fingerprint_tiny():
     lines = out.splitlines()
     assert len(lines) == 28 and all(len(line.split()[-1]) == 16 for line in lines)
     assert run('fingerprint.py', '--rooms', '2', '--synthesized', '1') == out   # same seed
+
+
+def test_home_tables_tiny(tmp_path):
+    # The two 3D-FRONT houses alone: the kitchen table (ProcTHOR's) is not theirs, and the
+    # script says so with exit status 1.
+    real = BENCHMARKS.parent.parent / 'shared' / 'data' / 'real' / '3dfront'
+    if not real.is_dir():
+        pytest.skip(f'no real data in {real}')
+    (tmp_path / '3dfront').symlink_to(real)
+    result = subprocess.run([sys.executable, str(BENCHMARKS / 'home_tables.py'), '--data',
+                             str(tmp_path)], cwd=BENCHMARKS.parent, capture_output=True,
+                            text=True, timeout=300)
+    assert result.returncode == 1, result.stdout[-2000:] + result.stderr[-3000:]
+    assert (f'kitchen: 0 rooms derived, {ROOMS_IN_TABLE["kitchen"]} in the module  <-- differs'
+            in result.stdout)
+    assert 'dining: 2 rooms derived, ' in result.stdout
+    assert '  3dfront  hallway       1 longer ' in result.stdout
