@@ -66,8 +66,8 @@ def test_room_sizes_are_ordered_quantiles():
             assert len(what) == len(ht.SIZE_QUANTILES), rt
             assert list(what) == sorted(what) and what[0] > 0, rt
         # each room's shorter side is at most its longer one, so each quantile is too
-        assert all(s <= lo for s, lo in zip(sizes.shorter, sizes.longer)), rt
-        # a floor of at least 2 m² (schema.check_floor) inside its longer x shorter box
+        assert all(s <= lo for s, lo in zip(sizes.shorter, sizes.longer, strict=True)), rt
+        # a floor of at least 2 m² (schema.check_floor) inside the square of its longer side
         assert sizes.area[0] >= 2.0 and sizes.area[-1] <= sizes.longer[-1] ** 2, rt
 
 
