@@ -53,7 +53,8 @@ def _source(scene: dict) -> tuple[str, str]:
 
 def kitchen_counts(scenes: list[dict]) -> tuple[int, Counter, Counter]:
     """(kitchens, our category -> count, data categories without a decision) of ProcTHOR's
-    kitchens through ``home_tables.PROCTHOR_KITCHEN`` and its counter shapes."""
+    kitchens through ``home_tables.PROCTHOR_KITCHEN``, its stools' heights and its counters'
+    shapes."""
     rooms, counts, undecided = 0, Counter(), Counter()
     for scene in scenes:
         if _source(scene)[0] != 'procthor' or scene['room']['room_type'] != 'kitchen':
@@ -67,6 +68,9 @@ def kitchen_counts(scenes: list[dict]) -> tuple[int, Counter, Counter]:
                 counts[name] += runs
             elif category in ht.PROCTHOR_KITCHEN:
                 counts[ht.PROCTHOR_KITCHEN[category]] += 1
+            elif category in ht.PROCTHOR_KITCHEN_BY_HEIGHT:
+                tall, low, high = ht.PROCTHOR_KITCHEN_BY_HEIGHT[category]
+                counts[high if obj['size'][2] >= tall else low] += 1
             elif category not in ht.PROCTHOR_KITCHEN_DROPPED:
                 undecided[category] += 1
     return rooms, counts, undecided

@@ -20,16 +20,20 @@ from dataclasses import dataclass
 # ProcTHOR's object types in its kitchens -> ours (procthor_1room_train.jsonl.gz, the 500
 # one-room houses of Ram81/procthor-1k train.jsonl.gz at 5922e52; object types from
 # allenai/procthor's asset database). Chairs in ProcTHOR kitchens stand at its dining
-# tables and stools at its counters, hence dining chair and bar stool; a mug is a cup and a
-# wine bottle a bottle to the paper's tableware categories.
+# tables (docs/datasets.md), hence dining chair; a mug is a cup and a wine bottle a bottle to
+# the paper's tableware categories.
 PROCTHOR_KITCHEN = {
     'fridge': 'fridge', 'microwave': 'microwave', 'coffee machine': 'coffee machine',
     'toaster': 'toaster', 'dining table': 'dining table', 'chair': 'dining chair',
-    'stool': 'bar stool', 'garbage can': 'trash can', 'house plant': 'plant',
+    'garbage can': 'trash can', 'house plant': 'plant',
     'shelving unit': 'shelving', 'vase': 'vase', 'television': 'television',
     'side table': 'stand', 'book': 'book', 'cup': 'cup', 'mug': 'cup', 'bottle': 'bottle',
     'wine bottle': 'bottle',
 }
+# ProcTHOR's stools come in two heights: a seat for a 0.9 m counter is about 0.65 m high or
+# more (a bar stool), a low stool is the paper's stool. Data category -> (the height in m
+# from which it is the tall one, the low one's name, the tall one's).
+PROCTHOR_KITCHEN_BY_HEIGHT = {'stool': (0.65, 'stool', 'bar stool')}
 # ProcTHOR's counter is one asset per kitchen whose id names its shape
 # (Countertop_<shape>_<w>x<d>): a straight run (I), an L of two runs along two walls, a U (C)
 # of three, or a free-standing island. Our counter is one straight run along a wall.
@@ -71,21 +75,22 @@ FRONT_DINING_GROUP_ROOMS = ('LivingDiningRoom',)
 # ----------------------------------------------------------------------------- the tables
 # Objects per room type and the rooms they were counted over, as categories.TABLE_COUNTS.
 TABLE_COUNTS = {
-    # ProcTHOR kitchens of procthor_1room_train.jsonl.gz through PROCTHOR_KITCHEN and
-    # PROCTHOR_COUNTER_SHAPES, plus KITCHEN_REFERENCE's shares of those kitchens.
+    # ProcTHOR kitchens of procthor_1room_train.jsonl.gz through PROCTHOR_KITCHEN,
+    # PROCTHOR_KITCHEN_BY_HEIGHT and PROCTHOR_COUNTER_SHAPES, plus KITCHEN_REFERENCE's shares
+    # of those kitchens.
     'kitchen': {
         'dining chair': 245, 'counter': 236, 'cup': 157, 'kitchen sink': 147, 'stove': 147,
         'fridge': 146, 'bottle': 111, 'plant': 104, 'dishwasher': 100, 'shelving': 98,
-        'bar stool': 91, 'dining table': 79, 'trash can': 59, 'vase': 58, 'book': 56,
-        'coffee machine': 36, 'toaster': 35, 'television': 32, 'microwave': 26,
-        'kitchen island': 24, 'stand': 8,
+        'dining table': 79, 'trash can': 59, 'vase': 58, 'book': 56, 'stool': 46,
+        'bar stool': 45, 'coffee machine': 36, 'toaster': 35, 'television': 32,
+        'microwave': 26, 'kitchen island': 24, 'stand': 8,
     },
     # 3D-FRONT: the DiningRoom rooms and the dining groups of the LivingDiningRoom rooms of
     # the houses in ../shared/data/real/3dfront (two houses, 3dfront_0a17c68b.json and
     # 3dfront_1d481334.json, with the 3D-FUTURE category mapping), through FRONT_DINING. Two
     # rooms is a small sample: run benchmarks/home_tables.py on the full 3D-FRONT to count
-    # its dining rooms. The 3D-FRONT paper publishes room counts per type but no table of
-    # categories per room type.
+    # its dining rooms. No published table of 3D-FRONT's categories per dining room was
+    # found (the 3D-FRONT paper gives no categories per room type).
     'dining': {'dining chair': 8, 'dining table': 2, 'sideboard': 1},
     # No data set here has furnished hallways (3D-FRONT's one aisle here is empty), so this
     # table is a DESIGN ESTIMATE, not a measurement: objects per 100 hallways, from the

@@ -41,11 +41,13 @@ def test_every_mapping_lands_on_a_table_name_or_a_category():
     kitchen, dining = set(ht.TABLE_COUNTS['kitchen']), set(ht.TABLE_COUNTS['dining'])
     assert set(ht.PROCTHOR_KITCHEN.values()) <= kitchen
     assert {name for name, _ in ht.PROCTHOR_COUNTER_SHAPES.values()} <= kitchen
+    assert {n for _, *names in ht.PROCTHOR_KITCHEN_BY_HEIGHT.values() for n in names} <= kitchen
     assert set(ht.KITCHEN_REFERENCE) <= kitchen
     assert set(ht.FRONT_DINING.values()) <= dining
     # a data category is mapped or dropped, never both
-    assert not set(ht.PROCTHOR_KITCHEN) & set(ht.PROCTHOR_KITCHEN_DROPPED)
-    assert not set(ht.PROCTHOR_COUNTER_TYPES) & set(ht.PROCTHOR_KITCHEN_DROPPED)
+    decided = [ht.PROCTHOR_KITCHEN, ht.PROCTHOR_KITCHEN_BY_HEIGHT, ht.PROCTHOR_COUNTER_TYPES,
+               ht.PROCTHOR_KITCHEN_DROPPED]
+    assert sum(len(d) for d in decided) == len(set().union(*decided))
     for share in ht.KITCHEN_REFERENCE.values():
         assert 0 < share <= 1
 
