@@ -26,7 +26,7 @@ PROCTHOR_KITCHEN = {
     'fridge': 'fridge', 'microwave': 'microwave', 'coffee machine': 'coffee machine',
     'toaster': 'toaster', 'dining table': 'dining table', 'chair': 'dining chair',
     'garbage can': 'trash can', 'house plant': 'plant',
-    'shelving unit': 'shelving', 'vase': 'vase', 'television': 'television',
+    'shelving unit': 'shelving', 'vase': 'vase',
     'side table': 'stand', 'book': 'book', 'cup': 'cup', 'mug': 'cup', 'bottle': 'bottle',
     'wine bottle': 'bottle',
 }
@@ -40,11 +40,11 @@ PROCTHOR_KITCHEN_BY_HEIGHT = {'stool': (0.65, 'stool', 'bar stool')}
 PROCTHOR_COUNTER_TYPES = ('counter top',)
 PROCTHOR_COUNTER_SHAPES = {'I': ('counter', 1), 'L': ('counter', 2), 'C': ('counter', 3),
                            'Island': ('kitchen island', 1)}
-# Left out of the kitchen table: paintings are wall-mounted (out of the pipeline, as
-# datasets.training leaves out 'mounted' categories); the rest are food, utensils, small
-# items and props the package does not model.
+# Left out of the kitchen table: paintings and televisions hang on the walls of ProcTHOR's
+# kitchens (out of the pipeline, as datasets.training leaves out 'mounted' categories); the
+# rest are food, utensils, small items and props the package does not model.
 PROCTHOR_KITCHEN_DROPPED = (
-    'painting', 'egg', 'tomato', 'potato', 'lettuce', 'apple', 'bread', 'spray bottle',
+    'painting', 'television', 'egg', 'tomato', 'potato', 'lettuce', 'apple', 'bread', 'spray bottle',
     'soap bottle', 'butter knife', 'knife', 'spatula', 'fork', 'spoon', 'ladle', 'salt shaker',
     'pepper shaker', 'plate', 'bowl', 'pot', 'pan', 'kettle', 'dish sponge', 'paper towel roll',
     'garbage bag', 'statue', 'pencil', 'pen', 'cell phone', 'credit card', 'safe',
@@ -82,8 +82,8 @@ TABLE_COUNTS = {
         'dining chair': 245, 'counter': 236, 'cup': 157, 'kitchen sink': 147, 'stove': 147,
         'fridge': 146, 'bottle': 111, 'plant': 104, 'dishwasher': 100, 'shelving': 98,
         'dining table': 79, 'trash can': 59, 'vase': 58, 'book': 56, 'stool': 46,
-        'bar stool': 45, 'coffee machine': 36, 'toaster': 35, 'television': 32,
-        'microwave': 26, 'kitchen island': 24, 'stand': 8,
+        'bar stool': 45, 'coffee machine': 36, 'toaster': 35, 'microwave': 26,
+        'kitchen island': 24, 'stand': 8,
     },
     # 3D-FRONT: the DiningRoom rooms and the dining groups of the LivingDiningRoom rooms of
     # the houses in ../shared/data/real/3dfront (two houses, 3dfront_0a17c68b.json and
@@ -95,7 +95,7 @@ TABLE_COUNTS = {
     # No data set here has furnished hallways (3D-FRONT's one aisle here is empty), so this
     # table is a DESIGN ESTIMATE, not a measurement: objects per 100 hallways, from the
     # furniture an entrance hall holds in Neufert, Architects' Data (4th ed., 2012,
-    # 'Entrances, halls'): a place to hang coats, to keep and to put on shoes, and a surface
+    # on entrance halls): a place to hang coats, to keep and to put on shoes, and a surface
     # for keys and post. Coats: a coat rack in most halls; shoes: a shoe bench or a shoe
     # cabinet in most; a console table in under half (a narrow hall leaves no room for it);
     # a plant or vase on the console table in some.
