@@ -117,13 +117,14 @@ def kitchen_sink(b: Builder):
         b.box('basin', 'metal_dark', bx0, bx1, -bw / 2, bw / 2, zw, zw + 0.002)
         b.cyl('drain', 'chrome', (bx0 + bx1) / 2, 0.0, zw + 0.002, zw + 0.003, 0.04, n=12)
         yt = 0.0
-    # the tap at the back of the bowl, the highest point: column, arched spout, lever
+    # the tap at the back of the bowl, its column the highest point (a collision piece of
+    # its own in the exports), a spout over the bowl and a lever at the side
     tx = x0 + 0.07
-    b.cyl('tap', tap, tx, yt, zw, H - 0.02, 0.018, n=12)
+    b.cyl('tap', tap, tx, yt, zw, H, 0.02, n=12)
     spout = 0.2 if s != 1 else 0.16
-    b.seg('tap_spout', tap, (tx, yt, H - 0.02), (tx + spout, yt, H - 0.02), 0.012, n=8)
-    b.seg('tap_spout', tap, (tx + spout, yt, H - 0.02), (tx + spout, yt, H - 0.09), 0.011, n=8)
-    b.box('tap_lever', tap, tx - 0.05, tx + 0.008, yt + 0.014, yt + 0.028, H - 0.05, H)
+    b.seg('tap_spout', tap, (tx, yt, H - 0.03), (tx + spout, yt, H - 0.03), 0.012, n=8)
+    b.seg('tap_spout', tap, (tx + spout, yt, H - 0.03), (tx + spout, yt, H - 0.1), 0.011, n=8)
+    b.box('tap_lever', tap, tx - 0.05, tx + 0.008, yt + 0.02, yt + 0.034, H - 0.08, H - 0.06)
 
 
 @builds('stove')
