@@ -347,10 +347,10 @@ CATEGORIES: dict[str, CategoryInfo] = {c.name: c for c in (
     _c('coat rack', 'first', (0.6, 1.4), (0.25, 0.4), (1.7, 2.0), against_wall=True,
        description='hallway coat rack standing against the wall: a frame with a row of '
                    'hooks and a hat shelf (a coat stand in the open is a hanger)'),
-    _c('microwave', 'second', (0.44, 0.6), (0.32, 0.45), (0.25, 0.34),
+    _c('microwave', 'second', (0.44, 0.62), (0.32, 0.45), (0.25, 0.36),
        tuple(PLAUSIBLE_PARENTS['microwave']),
        description='microwave oven, door at the front'),
-    _c('coffee machine', 'second', (0.18, 0.32), (0.28, 0.45), (0.3, 0.42),
+    _c('coffee machine', 'second', (0.18, 0.32), (0.28, 0.45), (0.3, 0.45),
        tuple(PLAUSIBLE_PARENTS['coffee machine']),
        description='espresso machine, spout and drip tray at the front'),
     _c('toaster', 'second', (0.26, 0.4), (0.15, 0.22), (0.18, 0.22),
