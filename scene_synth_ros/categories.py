@@ -11,14 +11,19 @@ object's front (local y), ``depth`` from back to front (local x, the front faces
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property, lru_cache
 import math
 from typing import Any, Iterable
 
+from . import home_tables
 from .errors import RoomTypeConflict, UnknownRoomType
 
-ROOM_TYPES = ('bedroom', 'living', 'office', 'bathroom')
+# The paper's room types (its appendix table), then the rooms of real homes beyond them
+# (``home_tables``): every room type the package furnishes.
+PAPER_ROOM_TYPES = ('bedroom', 'living', 'office', 'bathroom')
+HOME_ROOM_TYPES = ('kitchen', 'dining', 'hallway')
+ROOM_TYPES = PAPER_ROOM_TYPES + HOME_ROOM_TYPES
 
 # Rooms per type after the paper's filtering (section 4).
 ROOMS_IN_TABLE = {'bedroom': 6300, 'living': 1400, 'office': 1200, 'bathroom': 6800}
@@ -26,7 +31,9 @@ ROOMS_IN_TABLE = {'bedroom': 6300, 'living': 1400, 'office': 1200, 'bathroom': 6
 # Side of the square area, in metres, that a top-down image of each room type covers. A room
 # whose floor does not fit in this square cannot be rendered and is rejected on input; at
 # 64 px this is 9.4 cm (bedroom), 12.5 cm (living), 10.9 cm (office), 7.8 cm (bathroom) a pixel.
-ROOM_SIZE_CAP = {'bedroom': 6.0, 'living': 8.0, 'office': 7.0, 'bathroom': 5.0}
+ROOM_SIZE_CAP = {'bedroom': 6.0, 'living': 8.0, 'office': 7.0, 'bathroom': 5.0,
+                 # at the bedroom's 9.4 cm a pixel: a hallway's 0.9 m path is ten pixels
+                 'kitchen': 6.0, 'dining': 7.0, 'hallway': 6.0}
 
 # Doors and windows per room type, from the same table (architecture, not furniture).
 ARCHITECTURE_COUNTS = {
@@ -206,6 +213,20 @@ PLAUSIBLE_PARENTS: dict[str, dict[str, float]] = {
     'microwave': {'counter': 6, 'kitchen island': 1},
     'coffee machine': {'counter': 6, 'kitchen island': 1, 'sideboard': 1},
     'toaster': {'counter': 6, 'kitchen island': 1},
+}
+
+# In the rooms of a home beyond the paper's, the paper's small things stand on that room's
+# surfaces too, by these weights beside their ``PLAUSIBLE_PARENTS``: tableware and a vase on
+# the dining table or the worktop, a plant or a vase on a sideboard or a console table, books
+# on a shelf. Only those rooms' categories get them (``paper_spec``), so the paper's rooms
+# and the weights trained on them are as they were.
+HOME_PARENTS: dict[str, dict[str, float]] = {
+    'cup': {'dining table': 5, 'counter': 3, 'kitchen island': 3},
+    'bottle': {'dining table': 3, 'counter': 4, 'kitchen island': 2},
+    'vase': {'dining table': 4, 'sideboard': 4, 'console table': 5, 'counter': 1},
+    'plant': {'sideboard': 3, 'console table': 3, 'counter': 2, 'dining table': 1,
+              'shoe bench': 1},
+    'book': {'shelving': 4, 'dining table': 1, 'counter': 1},
 }
 
 _SURFACES_LAMP = ('stand', 'desk', 'dresser', 'dressing table', 'shoes cabinet', 'tv stand')
@@ -578,16 +599,28 @@ class Vocabulary:
 
 @lru_cache(maxsize=None)
 def paper_spec(room_type: str) -> RoomTypeSpec:
-    """The category set of one of the paper's room types, from its table."""
-    rooms = ROOMS_IN_TABLE[room_type]
+    """The category set of one of the package's room types, from its table: the paper's,
+    or for the rooms of a home beyond it ``home_tables``' (whose small things may stand on
+    that room's surfaces, ``HOME_PARENTS``)."""
+    home = room_type in HOME_ROOM_TYPES
+    rooms = (home_tables.ROOMS_IN_TABLE if home else ROOMS_IN_TABLE)[room_type]
+    table = (home_tables.TABLE_COUNTS if home else TABLE_COUNTS)[room_type]
     cats = []
-    for name, count in TABLE_COUNTS[room_type].items():
+    for name, count in table.items():
         info = CATEGORIES[name]
+        if home and name in HOME_PARENTS:
+            extra = {p: w for p, w in HOME_PARENTS[name].items() if p in table}
+            info = replace(info, supported_by=info.supported_by + tuple(
+                p for p in extra if p not in info.supported_by),
+                parents=info.parents + tuple((p, float(w)) for p, w in extra.items()))
         freq = count / rooms
         cats.append(RoomCategorySpec(info, count, freq, info.mean_footprint * freq))
-    arch = ARCHITECTURE_COUNTS[room_type]
+    if home:
+        per_room = home_tables.OPENINGS_PER_ROOM[room_type]
+    else:
+        per_room = {k: n / rooms for k, n in ARCHITECTURE_COUNTS[room_type].items()}
     return RoomTypeSpec(room_type, rooms, ROOM_SIZE_CAP[room_type], tuple(cats),
-                        arch['door'] / rooms, arch['window'] / rooms)
+                        per_room['door'], per_room['window'])
 
 
 PAPER = Vocabulary.paper()

@@ -105,6 +105,15 @@ TABLE_COUNTS = {
 }
 ROOMS_IN_TABLE = {'kitchen': 147, 'dining': 2, 'hallway': 100}
 
+# Doors and windows per room, as categories.ARCHITECTURE_COUNTS gives the paper's. Kitchens:
+# doors from the two 3D-FRONT kitchens here (a ProcTHOR one-room house has its one outside
+# door only), windows from ProcTHOR's 147 kitchens. Dining rooms: ESTIMATE (no dining room
+# with its doors here), a door to the kitchen and one to the hall or living room, a window.
+# Hallways: doors from the 3D-FRONT aisle here (four: it joins the rooms), no window.
+OPENINGS_PER_ROOM = {'kitchen': {'door': 1.5, 'window': 1.32},
+                     'dining': {'door': 2.0, 'window': 1.0},
+                     'hallway': {'door': 4.0, 'window': 0.0}}
+
 
 # ----------------------------------------------------------------------------- room sizes
 SIZE_QUANTILES = (0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0)

@@ -121,3 +121,18 @@ BED_STRETCH = 0.6
 # Fronts a person uses: one should not face a wall closer than 0.3 m (a wardrobe's doors, a
 # chair's knees, a toilet's user).
 WALL_CLEARANCE = 0.3
+
+# ---- the rooms of a home beyond the paper's (``rules.home``, ``corpus``) ----------------
+# Kitchen planning (NKBA Kitchen Planning Guidelines): each leg of the sink-stove-fridge
+# triangle 4 to 9 ft, the three together at most 26 ft; a work aisle 42 in (1.07 m) for one
+# cook, of which the corpus keeps 1.0 m before the units.
+TRIANGLE_LEG = (1.2, 2.7)
+TRIANGLE_TOTAL = 7.9
+KITCHEN_AISLE = 1.0
+RUN_GAP = 0.05          # m between two units of one counter run
+DOOR_SWING = 0.6        # m an appliance's or cabinet's door or flap needs before its front
+# Dining: a chair needs 0.3 m behind it to be pulled out, and the table 0.75 m on a side
+# where people sit (chair and pull-out; planning guides ask 0.75-0.9 m).
+PULL_OUT = 0.3
+DINING_CLEARANCE = 0.75
+HALLWAY_PATH = 0.9      # m: the clear walking width of a hallway (accessible routes: 36 in)
