@@ -504,7 +504,14 @@ def _pair(v) -> tuple[float, float]:
 
 
 # Other names accepted for a room type (after lower-casing, '_' read as ' ').
-ROOM_TYPE_ALIASES = {'living room': 'living', 'livingroom': 'living', 'bed room': 'bedroom'}
+ROOM_TYPE_ALIASES = {
+    'living room': 'living', 'livingroom': 'living', 'bed room': 'bedroom',
+    'master bedroom': 'bedroom', 'masterbedroom': 'bedroom',
+    'living dining room': 'living', 'livingdiningroom': 'living',     # open plan
+    'dining room': 'dining', 'diningroom': 'dining',
+    'hall': 'hallway', 'corridor': 'hallway', 'entrance': 'hallway', 'entrance hall': 'hallway',
+    'entryway': 'hallway', 'aisle': 'hallway',
+}
 
 
 @dataclass(frozen=True)

@@ -155,7 +155,8 @@ def batch_loss(module: str, net: nn.Module, batch: dict, cfg: PipelineConfig, de
     if module == 'category':
         logits = net(b['image'], b['counts'])
         loss = nn.functional.cross_entropy(logits, b['target'])
-        top5 = logits.topk(5, dim=1).indices
+        # a room type of fewer than five categories (with STOP) has every one in its top 5
+        top5 = logits.topk(min(5, logits.shape[1]), dim=1).indices
         return loss, {'loss': loss.item(),
                       'top1': (top5[:, 0] == b['target']).float().mean().item(),
                       'top5': (top5 == b['target'][:, None]).any(1).float().mean().item()}
