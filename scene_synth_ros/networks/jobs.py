@@ -1,0 +1,194 @@
+"""Training every module of several room types in processes side by side (``scene-synth
+train --jobs N``, ``make weights``).
+
+One module of one room type is one task, as ``train --modules`` runs it: the run directory
+lets processes train different modules at once, and a room type's bundle is exported once
+its modules are done. The longest schedules start first. A process keeps the rooms it made
+for its next module of the same room type. Started again with the same run directory, it
+skips the finished modules and bundles and resumes the others from their checkpoints. The
+weights are those of one process training everything in turn: each module's batches, noise
+and initial weights are functions of (seed, module, step).
+"""
+from __future__ import annotations
+
+from concurrent.futures import FIRST_COMPLETED, Future, wait
+from dataclasses import dataclass
+import json
+from pathlib import Path
+import sys
+import time
+from typing import Callable
+
+import torch
+
+from ..parallel import process_executor
+from . import NETWORKS
+from .config import PipelineConfig
+from .train import check_room_types, data_vocabulary, train_room_type
+
+# Seconds between two progress lines.
+PROGRESS_EVERY = 60.0
+
+# The rooms a worker process made, for its next module of the same room type (load_corpora).
+_CORPORA: dict = {}
+
+
+def stamped(line: str) -> None:
+    """``line`` printed with the time of day: the progress log of ``make weights``."""
+    now = time.strftime('%H:%M:%S')
+    # One write of whole lines: the processes side by side share the output.
+    sys.stdout.write(''.join(f'{now} {part}\n' for part in line.splitlines()))
+    sys.stdout.flush()
+
+
+def _work(room_type: str, cfg: PipelineConfig, run_root: Path, weights_dir: Path,
+          modules: tuple[str, ...], data_dir: Path | None) -> None:
+    train_room_type(room_type, cfg, run_root, weights_dir, progress=False, echo=stamped,
+                    modules=modules, data_dir=data_dir, corpus_cache=_CORPORA)
+
+
+def _checkpoint_step(path: Path) -> int:
+    if not path.is_file():
+        return 0
+    return int(torch.load(path, map_location='cpu', weights_only=True, mmap=True)['step'])
+
+
+def _bundle_current(path: Path, cfg: PipelineConfig, run_dir: Path) -> bool:
+    """Whether the bundle at ``path`` was exported from this configuration after the last
+    checkpoint in ``run_dir`` was written."""
+    if not path.is_file():
+        return False
+    ckpts = [p.stat().st_mtime_ns for p in run_dir.glob('*.ckpt')]
+    if ckpts and path.stat().st_mtime_ns < max(ckpts):
+        return False
+    try:
+        stored = torch.load(path, map_location='cpu', weights_only=True, mmap=True)['config']
+    except Exception:  # an unreadable or foreign file: made again
+        return False
+    return stored == cfg.to_json()
+
+
+@dataclass
+class _Seen:
+    step: int = 0
+    seconds: float = 0.0
+    rate: float | None = None      # steps a second, between the last two log entries
+
+
+class _Progress:
+    """Where each module is, read from the room types' ``log.jsonl`` as they grow."""
+
+    def __init__(self, run_root: Path, steps: dict[tuple[str, str], int]):
+        self.run_root, self.steps = run_root, steps
+        self.offsets: dict[str, int] = {}
+        self.seen: dict[tuple[str, str], _Seen] = {}
+
+    def _read(self, rt: str) -> None:
+        try:
+            with open(self.run_root / rt / 'log.jsonl', 'rb') as f:
+                f.seek(self.offsets.get(rt, 0))
+                data = f.read()
+        except FileNotFoundError:
+            return
+        whole = data[:data.rfind(b'\n') + 1]          # a line being written waits
+        self.offsets[rt] = self.offsets.get(rt, 0) + len(whole)
+        for line in whole.splitlines():
+            try:
+                e = json.loads(line)
+            except ValueError:
+                continue
+            if not {'module', 'step', 'seconds'} <= set(e):
+                continue
+            s = self.seen.setdefault((rt, e['module']), _Seen())
+            if e['seconds'] > s.seconds and e['step'] > s.step:   # the same process's entries
+                s.rate = (e['step'] - s.step) / (e['seconds'] - s.seconds)
+            s.step, s.seconds = e['step'], e['seconds']
+
+    def line(self, running: list[tuple[str, str]]) -> str:
+        for rt in {rt for rt, _ in running}:
+            self._read(rt)
+        parts = []
+        for key in running:
+            s = self.seen.get(key, _Seen())
+            total = self.steps[key]
+            part = f'{key[0]}/{key[1]} {s.step:,}/{total:,}'
+            if s.rate:
+                part += f' ({s.rate:.1f} steps/s, {(total - s.step) / s.rate / 60:.0f} min left)'
+            parts.append(part)
+        return '; '.join(parts)
+
+
+def train_side_by_side(types: list[str], cfg: PipelineConfig, run_root: Path,
+                       weights_dir: Path, jobs: int, echo: Callable[[str], None] = stamped,
+                       data_dir: Path | None = None, every: float = PROGRESS_EVERY
+                       ) -> list[Path]:
+    """Train the modules of ``types`` in ``jobs`` processes and export their bundles to
+    ``weights_dir``, saying what starts, ends and where each module is (every ``every``
+    seconds) through ``echo``; the bundles' paths. Where a module fails, the modules not
+    started are dropped, those running finish (keeping their checkpoints), then its error
+    is raised."""
+    if jobs < 1:
+        raise ValueError(f'jobs {jobs}: expected 1 or more processes')
+    vocabulary = data_vocabulary(data_dir)
+    known = vocabulary.room_types
+    unknown = [rt for rt in types if rt not in known]
+    if unknown:
+        raise ValueError(f'unknown room type {unknown[0][:40]!r}; expected some of '
+                         f'{", ".join(known)}')
+    check_room_types(cfg, known)
+    run_root, weights_dir = Path(run_root), Path(weights_dir)
+    steps = {(rt, m): getattr(cfg.module_train(m, rt), m).steps
+             for rt in types for m in NETWORKS}
+    todo = [k for k in steps if _checkpoint_step(run_root / k[0] / f'{k[1]}.ckpt') < steps[k]]
+    todo.sort(key=lambda k: -steps[k])
+    left = {rt: {m for r, m in todo if r == rt} for rt in types}
+    echo(f'{len(todo)} of {len(steps)} modules to train ({len(steps) - len(todo)} finished '
+         f'before), {len(types)} bundles to export, in {jobs} processes; checkpoints and '
+         f'logs in {run_root}, weights to {weights_dir}')
+    t0 = time.monotonic()
+    progress = _Progress(run_root, steps)
+    out = [weights_dir / f'{rt}.pt' for rt in types]
+    with process_executor(jobs, spawn=True) as ex:
+        running: dict[Future, tuple[str, str | None]] = {}
+
+        def export(rt: str) -> None:
+            if _bundle_current(weights_dir / f'{rt}.pt', cfg, run_root / rt):
+                echo(f'{rt}: bundle {weights_dir / f"{rt}.pt"} is up to date')
+                return
+            running[ex.submit(_work, rt, cfg, run_root, weights_dir, NETWORKS,
+                              data_dir)] = (rt, None)
+
+        for rt in types:
+            if not left[rt]:
+                export(rt)
+        for rt, m in todo:
+            running[ex.submit(_work, rt, cfg, run_root, weights_dir, (m,), data_dir)] = (rt, m)
+        failed: BaseException | None = None
+        while running:
+            done, _ = wait(running, timeout=every, return_when=FIRST_COMPLETED)
+            for f in done:
+                rt, m = running.pop(f)
+                what = f'{rt}/{m}' if m else f'{rt} bundle'
+                if f.cancelled():
+                    continue
+                error = f.exception()
+                if error is not None:
+                    failed = failed or error
+                    for other in running:
+                        other.cancel()
+                    echo(f'{what} failed ({type(error).__name__}: {error}); waiting for '
+                         'the modules running to finish, then stopping')
+                    continue
+                if m is None:
+                    continue
+                left[rt].discard(m)
+                echo(f'{what}: finished, {(time.monotonic() - t0) / 60:.1f} min in')
+                if not left[rt] and failed is None:
+                    export(rt)
+            busy = [k for f, k in running.items() if k[1] is not None and f.running()]
+            if busy and not done:
+                echo(progress.line(busy))
+        if failed is not None:
+            raise failed
+    echo(f'{len(out)} bundles in {weights_dir}, {(time.monotonic() - t0) / 60:.1f} min')
+    return out
