@@ -3,11 +3,11 @@ train --jobs N``, ``make weights``).
 
 One module of one room type is one task, as ``train --modules`` runs it: the run directory
 lets processes train different modules at once, and a room type's bundle is exported once
-its modules are done. The longest schedules start first. A process keeps the rooms it made
-for its next module of the same room type. Started again with the same run directory, it
-skips the finished modules and bundles and resumes the others from their checkpoints. The
-weights are those of one process training everything in turn: each module's batches, noise
-and initial weights are functions of (seed, module, step).
+its modules are done. The rooms are made first, once a room type, on every core; then the
+longest schedules start first. Started again with the same run directory, it skips the
+finished modules and bundles and resumes the others from their checkpoints. The weights are
+those of one process training everything in turn: each module's batches, noise and initial
+weights are functions of (seed, module, step).
 """
 from __future__ import annotations
 
@@ -24,13 +24,18 @@ import torch
 from ..parallel import process_executor
 from . import NETWORKS
 from .config import PipelineConfig
-from .train import check_room_types, data_vocabulary, train_room_type
+from .train import check_room_types, data_vocabulary, load_corpora, train_room_type
 
 # Seconds between two progress lines.
 PROGRESS_EVERY = 60.0
 
-# The rooms a worker process made, for its next module of the same room type (load_corpora).
+# The rooms of every room type, made once before training and handed to each worker process
+# at its start (load_corpora's cache).
 _CORPORA: dict = {}
+
+
+def _keep(corpora: dict) -> None:
+    _CORPORA.update(corpora)
 
 
 def stamped(line: str) -> None:
@@ -146,9 +151,17 @@ def train_side_by_side(types: list[str], cfg: PipelineConfig, run_root: Path,
          f'before), {len(types)} bundles to export, in {jobs} processes; checkpoints and '
          f'logs in {run_root}, weights to {weights_dir}')
     t0 = time.monotonic()
+    # The rooms first, on every core, once a room type; a worker making them itself would
+    # make them again for each room type it meets.
+    corpora: dict = {}
+    for rt in types:
+        if left[rt] or not _bundle_current(weights_dir / f'{rt}.pt', cfg, run_root / rt):
+            sizes = {cfg.module_train(m, rt).train_rooms for m in NETWORKS}
+            load_corpora(rt, cfg, sizes | {cfg.train.train_rooms}, data_dir=data_dir,
+                         cache=corpora, echo=echo)
     progress = _Progress(run_root, steps)
     out = [weights_dir / f'{rt}.pt' for rt in types]
-    with process_executor(jobs, spawn=True) as ex:
+    with process_executor(jobs, _keep, (corpora,), spawn=True) as ex:
         running: dict[Future, tuple[str, str | None]] = {}
 
         def export(rt: str) -> None:

@@ -73,19 +73,27 @@ def load_corpus(room_type: str, cfg: PipelineConfig, workers: int | None = None,
 
 def load_corpora(room_type: str, cfg: PipelineConfig, sizes: set[int],
                  workers: int | None = None, data_dir: Path | None = None,
-                 cache: dict | None = None) -> dict[int, RoomCorpus]:
+                 cache: dict | None = None, echo: Callable[[str], None] = print
+                 ) -> dict[int, RoomCorpus]:
     """``load_corpus`` for each number of training rooms in ``sizes`` (modules of one room
     type may train on different numbers: ``PipelineConfig.module_train``), all cut from the
     rooms of the largest: a corpus room is a function of its seed and index, and a data
     set's split does not depend on how many of its training rooms are taken. ``cache``, a
-    dict kept by the caller, keeps the rooms made for the next call of the same process."""
+    dict kept by the caller, keeps the rooms made for the next call (in this process or,
+    handed over, in another). ``echo`` says what is made or read."""
     t = cfg.train
     key = (room_type, t.corpus_seed, t.val_rooms, str(data_dir))
     most = max(sizes)
     have = (cache or {}).get(key)
     if have is None or len(have.train) < most:
+        if data_dir is None:
+            echo(f'{room_type}: making {most} training and {t.val_rooms} held-out corpus '
+                 f'rooms (corpus seed {t.corpus_seed})')
         have = load_corpus(room_type, replace(cfg, train=replace(t, train_rooms=most)),
                            workers, data_dir)
+        if data_dir is not None:
+            echo(f'{room_type}: {len(have.train)} training and {len(have.val)} held-out '
+                 f'rooms of {data_dir}')
         if cache is not None:
             cache[key] = have
     if data_dir is not None:
@@ -392,14 +400,8 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
     runs = {name: cfg.for_module(name, rt) for name in NETWORKS if name in modules}
     sizes = {r.train.train_rooms for r in runs.values()} | \
         ({t.train_rooms} if exporting else set())
-    if data_dir is None:
-        echo(f'{rt}: making {max(sizes)} training and {t.val_rooms} held-out corpus rooms '
-             f'(corpus seed {t.corpus_seed})')
     corpora = load_corpora(rt, cfg, sizes, workers=t.threads or None, data_dir=data_dir,
-                           cache=corpus_cache)
-    if data_dir is not None:
-        echo(f'{rt}: {len(corpora[max(sizes)].train)} training and '
-             f'{len(corpora[max(sizes)].val)} held-out rooms of {data_dir}')
+                           cache=corpus_cache, echo=echo)
     m = cfg.model
     sources: dict[int, tuple[ExampleSource, ExampleSource]] = {
         n: tuple(ExampleSource(rt, rooms, m.resolution, m.location_resolution,
