@@ -114,13 +114,74 @@ class _Progress:
             self._read(rt)
         parts = []
         for key in running:
-            s = self.seen.get(key, _Seen())
+            s = self.seen.get(key)
+            if s is None:
+                parts.append(f'{key[0]}/{key[1]} starting')
+                continue
             total = self.steps[key]
             part = f'{key[0]}/{key[1]} {s.step:,}/{total:,}'
             if s.rate:
-                part += f' ({s.rate:.1f} steps/s, {(total - s.step) / s.rate / 60:.0f} min left)'
+                left = (total - s.step) / s.rate
+                part += f' ({s.rate:.1f} steps/s, ' + \
+                    (f'{left / 60:.0f} min left)' if left >= 90 else f'{left:.0f} s left)')
             parts.append(part)
         return '; '.join(parts)
+
+
+def _check(types: list[str], cfg: PipelineConfig, jobs: int, data_dir: Path | None) -> None:
+    if jobs < 1:
+        raise ValueError(f'jobs {jobs}: expected 1 or more processes')
+    known = data_vocabulary(data_dir).room_types
+    unknown = [rt for rt in types if rt not in known]
+    if unknown:
+        raise ValueError(f'unknown room type {unknown[0][:40]!r}; expected some of '
+                         f'{", ".join(known)}')
+    check_room_types(cfg, known)
+
+
+class _Pool:
+    """The tasks in the worker processes: modules, then each room type's export as soon as
+    its modules are done; a failure drops what has not started."""
+
+    def __init__(self, ex, cfg: PipelineConfig, run_root: Path, weights_dir: Path,
+                 data_dir: Path | None, left: dict[str, set[str]], echo: Callable[[str], None]):
+        self.ex, self.cfg, self.run_root, self.weights_dir = ex, cfg, run_root, weights_dir
+        self.data_dir, self.left, self.echo = data_dir, left, echo
+        self.running: dict[Future, tuple[str, str | None]] = {}
+        self.failed: BaseException | None = None
+        self.t0 = time.monotonic()
+
+    def submit(self, rt: str, module: str | None) -> None:
+        """Train ``module`` of ``rt``, or with None export its bundle (unless up to date)."""
+        if module is None and _bundle_current(self.weights_dir / f'{rt}.pt', self.cfg,
+                                              self.run_root / rt):
+            self.echo(f'{rt}: bundle {self.weights_dir / f"{rt}.pt"} is up to date')
+            return
+        modules = NETWORKS if module is None else (module,)
+        f = self.ex.submit(_work, rt, self.cfg, self.run_root, self.weights_dir, modules,
+                           self.data_dir)
+        self.running[f] = (rt, module)
+
+    def done(self, f: Future) -> None:
+        rt, module = self.running.pop(f)
+        if f.cancelled():
+            return
+        error = f.exception()
+        if error is not None:
+            self.failed = self.failed or error
+            for other in self.running:
+                other.cancel()
+            self.echo(f'{rt}/{module or "bundle"} failed ({type(error).__name__}: {error}); '
+                      'waiting for the modules running to finish, then stopping')
+        elif module is not None:
+            self.left[rt].discard(module)
+            self.echo(f'{rt}/{module}: finished, '
+                      f'{(time.monotonic() - self.t0) / 60:.1f} min in')
+            if not self.left[rt] and self.failed is None:
+                self.submit(rt, None)
+
+    def busy(self) -> list[tuple[str, str]]:
+        return [k for f, k in self.running.items() if k[1] is not None and f.running()]
 
 
 def train_side_by_side(types: list[str], cfg: PipelineConfig, run_root: Path,
@@ -132,15 +193,7 @@ def train_side_by_side(types: list[str], cfg: PipelineConfig, run_root: Path,
     seconds) through ``echo``; the bundles' paths. Where a module fails, the modules not
     started are dropped, those running finish (keeping their checkpoints), then its error
     is raised."""
-    if jobs < 1:
-        raise ValueError(f'jobs {jobs}: expected 1 or more processes')
-    vocabulary = data_vocabulary(data_dir)
-    known = vocabulary.room_types
-    unknown = [rt for rt in types if rt not in known]
-    if unknown:
-        raise ValueError(f'unknown room type {unknown[0][:40]!r}; expected some of '
-                         f'{", ".join(known)}')
-    check_room_types(cfg, known)
+    _check(types, cfg, jobs, data_dir)
     run_root, weights_dir = Path(run_root), Path(weights_dir)
     steps = {(rt, m): getattr(cfg.module_train(m, rt), m).steps
              for rt in types for m in NETWORKS}
@@ -160,48 +213,20 @@ def train_side_by_side(types: list[str], cfg: PipelineConfig, run_root: Path,
             load_corpora(rt, cfg, sizes | {cfg.train.train_rooms}, data_dir=data_dir,
                          cache=corpora, echo=echo)
     progress = _Progress(run_root, steps)
-    out = [weights_dir / f'{rt}.pt' for rt in types]
     with process_executor(jobs, _keep, (corpora,), spawn=True) as ex:
-        running: dict[Future, tuple[str, str | None]] = {}
-
-        def export(rt: str) -> None:
-            if _bundle_current(weights_dir / f'{rt}.pt', cfg, run_root / rt):
-                echo(f'{rt}: bundle {weights_dir / f"{rt}.pt"} is up to date')
-                return
-            running[ex.submit(_work, rt, cfg, run_root, weights_dir, NETWORKS,
-                              data_dir)] = (rt, None)
-
+        pool = _Pool(ex, cfg, run_root, weights_dir, data_dir, left, echo)
         for rt in types:
             if not left[rt]:
-                export(rt)
+                pool.submit(rt, None)
         for rt, m in todo:
-            running[ex.submit(_work, rt, cfg, run_root, weights_dir, (m,), data_dir)] = (rt, m)
-        failed: BaseException | None = None
-        while running:
-            done, _ = wait(running, timeout=every, return_when=FIRST_COMPLETED)
+            pool.submit(rt, m)
+        while pool.running:
+            done, _ = wait(pool.running, timeout=every, return_when=FIRST_COMPLETED)
             for f in done:
-                rt, m = running.pop(f)
-                what = f'{rt}/{m}' if m else f'{rt} bundle'
-                if f.cancelled():
-                    continue
-                error = f.exception()
-                if error is not None:
-                    failed = failed or error
-                    for other in running:
-                        other.cancel()
-                    echo(f'{what} failed ({type(error).__name__}: {error}); waiting for '
-                         'the modules running to finish, then stopping')
-                    continue
-                if m is None:
-                    continue
-                left[rt].discard(m)
-                echo(f'{what}: finished, {(time.monotonic() - t0) / 60:.1f} min in')
-                if not left[rt] and failed is None:
-                    export(rt)
-            busy = [k for f, k in running.items() if k[1] is not None and f.running()]
-            if busy and not done:
-                echo(progress.line(busy))
-        if failed is not None:
-            raise failed
-    echo(f'{len(out)} bundles in {weights_dir}, {(time.monotonic() - t0) / 60:.1f} min')
-    return out
+                pool.done(f)
+            if not done and pool.busy():
+                echo(progress.line(pool.busy()))
+        if pool.failed is not None:
+            raise pool.failed
+    echo(f'{len(types)} bundles in {weights_dir}, {(time.monotonic() - t0) / 60:.1f} min')
+    return [weights_dir / f'{rt}.pt' for rt in types]
