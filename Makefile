@@ -2,6 +2,19 @@
 #   make demo   install into .venv, start scene_synth_node, furnish an example room through
 #               it, ask it for one more object in a partial room, stop it
 #   make test   install into .venv, lint the tree, then run the whole test suite
+# and the one that makes the shipped weights again (docs/training.md, "How the shipped
+# weights were made"; hours on a CPU):
+#   make weights [WEIGHTS_DIR=runs/shipped/weights] [DEVICE=cpu|cuda] [ROOM_TYPES=all]
+#                [JOBS=2] [LOADER_WORKERS=0] [WEIGHTS_RUN=runs/shipped]
+#                [WEIGHTS_CONFIG=config/shipped.yaml]
+#       install, then train every module of each room type of ROOM_TYPES (all, one, or a
+#       comma list) as WEIGHTS_CONFIG states, JOBS processes side by side with one torch
+#       thread each, on DEVICE, and write the bundles to WEIGHTS_DIR (WEIGHTS_DIR=
+#       scene_synth_ros/weights replaces the shipped ones). The same seed gives the same
+#       weights. Resumable: run it again with the same WEIGHTS_RUN. Progress, time-stamped,
+#       on the screen and in WEIGHTS_RUN/weights.log. LOADER_WORKERS: processes making each
+#       job's batches ahead (on a GPU; they change no weight).
+# make help prints this.
 SHELL := /bin/bash
 .SHELLFLAGS := -eo pipefail -c
 PYTHON ?= python3
@@ -11,7 +24,10 @@ STAMP := $(VENV)/.installed-stamp
 # pip's warnings about the machine's local package mirrors are noise, not failures.
 PIP_QUIET := grep -v -E "is ignored: it is neither a file nor a directory" || true
 
-.PHONY: install demo test test-fast lint bench gallery evaluate procthor clean
+.PHONY: help install demo test test-fast lint bench gallery evaluate procthor weights clean
+
+help:
+	@sed -n '/^#/!q; s/^# \{0,1\}//p' Makefile
 
 install: $(STAMP)
 
@@ -70,6 +86,21 @@ procthor: install
 	  --out docs/procthor --markdown docs/procthor.md
 	$(VENV)/bin/scene-synth gallery --source data --data $(PROCTHOR)/data \
 	  --weights-dir $(PROCTHOR)/weights --per-type 3 --out docs/gallery/procthor.png
+
+# The shipped weights from this checkout (the header above; docs/training.md).
+WEIGHTS_CONFIG ?= config/shipped.yaml
+WEIGHTS_RUN ?= runs/shipped
+WEIGHTS_DIR ?= $(WEIGHTS_RUN)/weights
+DEVICE ?= cpu
+ROOM_TYPES ?= all
+JOBS ?= 2
+LOADER_WORKERS ?= 0
+SCENE_SYNTH ?= $(VENV)/bin/scene-synth
+weights: install
+	mkdir -p $(WEIGHTS_RUN)
+	$(SCENE_SYNTH) train --config $(WEIGHTS_CONFIG) --room-type $(ROOM_TYPES) \
+	  --device $(DEVICE) --jobs $(JOBS) --loader-workers $(LOADER_WORKERS) \
+	  --run-dir $(WEIGHTS_RUN) --weights-dir $(WEIGHTS_DIR) 2>&1 | tee -a $(WEIGHTS_RUN)/weights.log
 
 clean:
 	rm -rf $(VENV) demo_out .pytest_cache build *.egg-info

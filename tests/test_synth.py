@@ -453,13 +453,12 @@ def test_shipped_weights_load_without_pickle_and_fit_the_budget():
     for rt, f in zip(ROOM_TYPES, files, strict=True):
         torch.load(f, weights_only=True)
         b = load_bundle(f)
-        # The default (compact) networks; their location modules came from the longer
-        # schedule of compact_long.yaml, the bedroom's category module from that of
-        # compact_category_long.yaml, the dimensions modules from compact_dims_noise.yaml,
-        # which change no network.
+        # The default (compact) networks, trained with the schedules of shipped.yaml (made
+        # before it by a chain of retrainings: compact_long.yaml, compact_category_long.yaml,
+        # compact_dims_noise.yaml), which change no network.
         assert b.room_type == rt
         assert b.config.name in ('compact', 'compact_long', 'compact_category_long',
-                                 'compact_dims_noise')
+                                 'compact_dims_noise', 'shipped')
         assert b.networks['dimensions'].log_sigma is not None
         assert b.config.model == compact.model
         table = b.metrics['components']

@@ -9,7 +9,8 @@ from .common import WEIGHTS_DIR_HELP, UserError, room_types
 
 def add_parser(sub) -> None:
     c = sub.add_parser('train', help='train the four networks of a room type (resumable)')
-    c.add_argument('--room-type', default='all', help='bedroom, living, office, bathroom or all')
+    c.add_argument('--room-type', default='all', help='bedroom, living, office, bathroom, a '
+                   'comma list of them, or all')
     c.add_argument('--config', help='model and training configuration (YAML; default: '
                    'config/compact.yaml)')
     c.add_argument('--device', choices=('cpu', 'cuda', 'auto'), help='overrides the config')
@@ -29,6 +30,10 @@ def add_parser(sub) -> None:
     c.add_argument('--data', help='an imported data set (the --out of scene-synth import): '
                    'train its room types (all of them by default) on its rooms; the bundles '
                    'carry its category sets')
+    c.add_argument('--jobs', type=int, help='train the modules of the room types in this many '
+                   'processes side by side (one torch thread each unless --threads), each '
+                   'bundle exported when its modules are done, progress as time-stamped lines; '
+                   'what `make weights` runs')
     c.add_argument('--quiet', action='store_true', help='no progress bars')
     # training writes into --weights-dir: the vocabulary is the data set's (or the paper's),
     # not that of the old bundles there
@@ -66,6 +71,13 @@ def cmd_train(args) -> int:
     from ..networks.train import train
     from ..paths import weights_dir
     cfg = _pipeline_config(args.config, args.device)
+    if args.jobs is not None:
+        if args.jobs < 1:
+            raise UserError(f'--jobs {args.jobs}: expected 1 or more processes')
+        if args.modules or args.others_from:
+            raise UserError('--jobs trains every module of each room type and exports the '
+                            'bundles; leave out --modules and --others-from')
+        cfg.train.threads = 1
     if args.threads is not None:
         cfg.train.threads = args.threads
     if args.loader_workers is not None:
@@ -86,9 +98,18 @@ def cmd_train(args) -> int:
                             "not replace the package's own")
         data = Path(args.data)
         known = list(room_type_specs(describe_dir(data)))
-        types = known if args.room_type == 'all' else [args.room_type.strip().lower()]
+        types = known if args.room_type == 'all' else \
+            [part.strip().lower() for part in args.room_type.split(',')]
     else:
-        types = room_types(args.room_type)
+        types = list(dict.fromkeys(rt for part in args.room_type.split(',')
+                                   for rt in room_types(part.strip())))
+    if args.jobs is not None:
+        from ..networks.jobs import train_side_by_side
+        try:
+            train_side_by_side(types, cfg, run_root, out, args.jobs, data_dir=data)
+        except ValueError as e:
+            raise UserError(str(e)) from None
+        return 0
     print(f'training {", ".join(types)} with the {cfg.name} '
           f'configuration; checkpoints and logs in {run_root}, weights to {out}')
     modules = tuple(m.strip() for m in args.modules.split(',')) if args.modules else None

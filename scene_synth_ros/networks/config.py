@@ -1,19 +1,24 @@
 """Configuration of the four networks and of their training, read from YAML.
 
-Two shipped configurations live in ``config/``: ``compact.yaml`` (the default: 64 px images,
+Shipped configurations live in ``config/``: ``compact.yaml`` (the default: 64 px images,
 quarter-width ResNets, sized so that all four room types train on a 2-core CPU within four
-hours) and ``paper.yaml`` (the paper's 256 px input and full ResNet-18/34 widths).
+hours), ``paper.yaml`` (the paper's 256 px input and full ResNet-18/34 widths) and
+``shipped.yaml`` (the compact networks with the schedules of the shipped weights: some
+modules, and one module of one room type, train apart from the ``train`` section, stated in
+its ``modules`` and ``room_types`` sections).
 """
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field, fields, is_dataclass, replace
 import json
+import math
 from pathlib import Path
 from typing import Any
 
 import yaml
 
 from ..errors import quoted
+from . import NETWORKS
 
 
 @dataclass
@@ -115,24 +120,111 @@ class TrainConfig:
     adversarial_weight: float = 0.05       # dimensions: weight of the discriminator's loss
 
 
+# The settings of ``TrainConfig`` that one module's training may take apart from the other
+# modules' (``ModuleOverride``): the others (seed, held-out rooms, loss weights...) are one
+# for the whole room type, or read by one module alone already.
+MODULE_RUN_SETTINGS = ('train_rooms', 'val_every', 'checkpoint_every')
+
+
+@dataclass
+class ModuleOverride:
+    """Where one module's training departs from the ``train`` section: its schedule
+    (``ModuleSchedule``'s settings) and ``MODULE_RUN_SETTINGS``; None keeps the section's."""
+
+    steps: int | None = None
+    batch_size: int | None = None
+    lr: float | None = None
+    weight_decay: float | None = None
+    train_rooms: int | None = None
+    val_every: int | None = None
+    checkpoint_every: int | None = None
+
+    def set(self) -> dict[str, int | float]:
+        """The settings it gives, by name."""
+        return {k: v for k, v in asdict(self).items() if v is not None}
+
+
 @dataclass
 class PipelineConfig:
-    """Everything a training run or a synthesizer needs to know about the networks."""
+    """Everything a training run or a synthesizer needs to know about the networks.
+
+    ``modules`` (module name -> ``ModuleOverride``) and ``room_types`` (room type -> module
+    name -> ``ModuleOverride``) let single modules train apart from ``train``: the settings
+    of ``module`` of a room type are ``train``'s, then ``modules``', then ``room_types``'
+    (``module_train``)."""
 
     name: str = 'compact'
     device: str = 'auto'                    # cpu | cuda | auto
     model: ModelConfig = field(default_factory=ModelConfig)
     train: TrainConfig = field(default_factory=TrainConfig)
+    modules: dict[str, ModuleOverride] = field(default_factory=dict)
+    room_types: dict[str, dict[str, ModuleOverride]] = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
-        return asdict(self)
+        d = asdict(self)
+        # Without overrides a configuration writes what it wrote before they existed.
+        for key in ('modules', 'room_types'):
+            d.pop(key)
+        if self.modules:
+            d['modules'] = {m: o.set() for m, o in self.modules.items()}
+        if self.room_types:
+            d['room_types'] = {rt: {m: o.set() for m, o in mods.items()}
+                               for rt, mods in self.room_types.items()}
+        return d
 
     def to_json(self) -> str:
         return json.dumps(self.to_dict(), sort_keys=True)
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> 'PipelineConfig':
-        return _build(cls, d, 'config')
+        if not isinstance(d, dict):
+            raise ValueError(f'config: expected a mapping, got {type(d).__name__}')
+        rest = {k: v for k, v in d.items() if k not in ('modules', 'room_types')}
+        cfg = _build(cls, rest, 'config')
+        cfg.modules = _overrides(d.get('modules', {}), 'config.modules')
+        rts = d.get('room_types', {})
+        if not isinstance(rts, dict):
+            raise ValueError(f'config.room_types: expected a mapping of room types, got '
+                             f'{type(rts).__name__}')
+        cfg.room_types = {str(rt): _overrides(mods, f'config.room_types.{str(rt)[:40]}')
+                          for rt, mods in rts.items()}
+        cfg.check_overrides()
+        return cfg
+
+    def module_train(self, module: str, room_type: str | None = None) -> TrainConfig:
+        """The training settings ``module`` of ``room_type`` runs with: ``train`` with the
+        departures of ``modules``, then of ``room_types``, applied."""
+        if module not in NETWORKS:
+            raise ValueError(f'unknown module {quoted(module)}; expected one of '
+                             f'{", ".join(NETWORKS)}')
+        t = self.train
+        for o in (self.modules.get(module),
+                  self.room_types.get(room_type, {}).get(module) if room_type else None):
+            if o is None:
+                continue
+            given = o.set()
+            run = {k: v for k, v in given.items() if k in MODULE_RUN_SETTINGS}
+            sched = {k: v for k, v in given.items() if k not in MODULE_RUN_SETTINGS}
+            t = replace(t, **run, **{module: replace(getattr(t, module), **sched)})
+        return t
+
+    def for_module(self, module: str, room_type: str | None = None) -> 'PipelineConfig':
+        """This configuration as ``module`` of ``room_type`` trains with it: its settings
+        (``module_train``) in ``train``, no overrides left."""
+        return replace(self, train=self.module_train(module, room_type), modules={},
+                       room_types={})
+
+    def check_overrides(self) -> None:
+        """ValueError, one sentence, where an override would train a module on rooms that
+        the component table holds out (those after ``train.train_rooms``)."""
+        sections = [(f'modules.{m}', o) for m, o in self.modules.items()] + \
+            [(f'room_types.{rt}.{m}', o) for rt, mods in self.room_types.items()
+             for m, o in mods.items()]
+        for where, o in sections:
+            if o.train_rooms is not None and o.train_rooms > self.train.train_rooms:
+                raise ValueError(f'config.{where}.train_rooms: {o.train_rooms} is more than '
+                                 f'train.train_rooms ({self.train.train_rooms}), past which '
+                                 'the rooms are held out')
 
     @classmethod
     def from_yaml(cls, path: str | Path) -> 'PipelineConfig':
@@ -174,6 +266,39 @@ def _build(cls, data: Any, where: str, base=None):
         else:
             kwargs[name] = value
     return replace(defaults, **kwargs)
+
+
+def _overrides(data: Any, where: str) -> dict[str, ModuleOverride]:
+    """Module name -> ``ModuleOverride`` from a mapping; ValueError, one sentence, on an
+    unknown module or setting or a value that is not a positive number."""
+    if not isinstance(data, dict):
+        raise ValueError(f'{where}: expected a mapping of modules, got {type(data).__name__}')
+    out = {}
+    known = [f.name for f in fields(ModuleOverride)]
+    for module, settings in data.items():
+        if module not in NETWORKS:
+            raise ValueError(f'{where}: unknown module {quoted(module)}; expected one of '
+                             f'{", ".join(NETWORKS)}')
+        if not isinstance(settings, dict):
+            raise ValueError(f'{where}.{module}: expected a mapping of settings, got '
+                             f'{type(settings).__name__}')
+        kwargs = {}
+        for name, value in settings.items():
+            if name not in known:
+                raise ValueError(f'{where}.{module}: unknown setting {quoted(name)}; expected '
+                                 f'one of {", ".join(known)}')
+            integral = name not in ('lr', 'weight_decay')
+            least = 0 if name == 'weight_decay' else 1 if integral else math.ulp(0)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or \
+                    not math.isfinite(value) or value < least or \
+                    (integral and value != int(value)):
+                kind = 'a positive whole number' if integral else \
+                    'a number of 0 or more' if name == 'weight_decay' else 'a positive number'
+                raise ValueError(f'{where}.{module}.{name}: expected {kind}, got '
+                                 f'{quoted(value)}')
+            kwargs[name] = int(value) if integral else float(value)
+        out[module] = ModuleOverride(**kwargs)
+    return out
 
 
 def resolve_device(name: str):

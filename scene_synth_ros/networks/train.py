@@ -6,7 +6,7 @@ never stopped. Progress goes to a tqdm bar and, as JSON lines, to ``<run>/<room>
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 import json
 import math
 from pathlib import Path
@@ -69,6 +69,37 @@ def load_corpus(room_type: str, cfg: PipelineConfig, workers: int | None = None,
     rooms = list(generate_corpus(room_type, t.train_rooms + t.val_rooms, seed=t.corpus_seed,
                                  workers=workers))
     return RoomCorpus(rooms[:t.train_rooms], rooms[t.train_rooms:])
+
+
+def load_corpora(room_type: str, cfg: PipelineConfig, sizes: set[int],
+                 workers: int | None = None, data_dir: Path | None = None,
+                 cache: dict | None = None, echo: Callable[[str], None] = print
+                 ) -> dict[int, RoomCorpus]:
+    """``load_corpus`` for each number of training rooms in ``sizes`` (modules of one room
+    type may train on different numbers: ``PipelineConfig.module_train``), all cut from the
+    rooms of the largest: a corpus room is a function of its seed and index, and a data
+    set's split does not depend on how many of its training rooms are taken. ``cache``, a
+    dict kept by the caller, keeps the rooms made for the next call (in this process or,
+    handed over, in another). ``echo`` says what is made or read."""
+    t = cfg.train
+    key = (room_type, t.corpus_seed, t.val_rooms, str(data_dir))
+    most = max(sizes)
+    have = (cache or {}).get(key)
+    if have is None or len(have.train) < most:
+        if data_dir is None:
+            echo(f'{room_type}: making {most} training and {t.val_rooms} held-out corpus '
+                 f'rooms (corpus seed {t.corpus_seed})')
+        have = load_corpus(room_type, replace(cfg, train=replace(t, train_rooms=most)),
+                           workers, data_dir)
+        if data_dir is not None:
+            echo(f'{room_type}: {len(have.train)} training and {len(have.val)} held-out '
+                 f'rooms of {data_dir}')
+        if cache is not None:
+            cache[key] = have
+    if data_dir is not None:
+        return {n: RoomCorpus(have.train[:n], have.val) for n in sizes}
+    rooms = have.train + have.val
+    return {n: RoomCorpus(rooms[:n], rooms[n:n + t.val_rooms]) for n in sizes}
 
 
 def model_cooccurrence(room_type: str, scenes: list[Scene], vocabulary: Vocabulary = PAPER
@@ -239,6 +270,10 @@ def train_module(module: str, net: nn.Module, source: ExampleSource, val: Exampl
     opt = torch.optim.Adam(net.parameters(), lr=sched.lr, weight_decay=sched.weight_decay)
     disc = disc_opt = None
     if module == 'dimensions' and t.adversarial_weight > 0:
+        # Its own seed after the networks' (bundle.build_networks): unseeded, its initial
+        # weights were those of whatever had drawn before in the process, so the dimensions
+        # module trained alone (train --modules, --jobs) and after the others came out apart.
+        torch.manual_seed(t.seed + len(NETWORKS))
         disc = Discriminator(source.renderer.num_channels(source.room_type),
                              source.num_categories, cfg.model).to(device)
         disc_opt = torch.optim.Adam(disc.parameters(), lr=sched.lr, betas=(0.5, 0.999))
@@ -334,7 +369,8 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
                     progress: bool = True, echo: Callable[[str], None] = print,
                     modules: tuple[str, ...] = NETWORKS,
                     others_from: Path | None = None,
-                    data_dir: Path | None = None) -> Bundle | None:
+                    data_dir: Path | None = None,
+                    corpus_cache: dict | None = None) -> Bundle | None:
     """Train (or resume) the modules of ``room_type`` and export the bundle. With a subset
     of ``modules`` only those are trained and nothing is exported: several processes can
     then train different modules of one room type at once in the same run directory, and a
@@ -342,7 +378,10 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
     ``others_from``, a directory of bundles made with the same model configuration, the
     modules not trained are taken from its bundle and the result is exported: one module
     retrained, the others kept. With ``data_dir`` (an imported data set, see ``train``) the
-    rooms and category sets are the data set's and the bundle carries its room type's."""
+    rooms and category sets are the data set's and the bundle carries its room type's.
+    Each module trains with its own settings (``PipelineConfig.for_module``); the bundle's
+    co-occurrence counts and component table read the rooms of ``cfg.train``.
+    ``corpus_cache``: see ``load_corpora``."""
     vocabulary = data_vocabulary(data_dir)
     rt = vocabulary.resolve(room_type)
     device = resolve_device(cfg.device)
@@ -358,36 +397,36 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
         log_file.write(json.dumps({'room_type': rt, **entry}) + '\n')
         log_file.flush()
 
-    if data_dir is None:
-        echo(f'{rt}: making {t.train_rooms} training and {t.val_rooms} held-out corpus rooms '
-             f'(corpus seed {t.corpus_seed})')
-    corpus = load_corpus(rt, cfg, workers=t.threads or None, data_dir=data_dir)
-    if data_dir is not None:
-        echo(f'{rt}: {len(corpus.train)} training and {len(corpus.val)} held-out rooms of '
-             f'{data_dir}')
+    exporting = set(modules) == set(NETWORKS) or others_from is not None
+    runs = {name: cfg.for_module(name, rt) for name in NETWORKS if name in modules}
+    sizes = {r.train.train_rooms for r in runs.values()} | \
+        ({t.train_rooms} if exporting else set())
+    corpora = load_corpora(rt, cfg, sizes, workers=t.threads or None, data_dir=data_dir,
+                           cache=corpus_cache, echo=echo)
     m = cfg.model
     nets = build_networks(rt, m, seed=t.seed, vocabulary=vocabulary)
     multiple = nets['location'].multiple
-    source = ExampleSource(rt, corpus.train, m.resolution, m.location_resolution,
-                           target_radius=t.location_target_radius, vocabulary=vocabulary,
-                           multiple=multiple)
-    val = ExampleSource(rt, corpus.val, m.resolution, m.location_resolution,
-                        target_radius=t.location_target_radius, vocabulary=vocabulary,
-                        multiple=multiple)
+    sources: dict[int, tuple[ExampleSource, ExampleSource]] = {
+        n: tuple(ExampleSource(rt, rooms, m.resolution, m.location_resolution,
+                               target_radius=t.location_target_radius, vocabulary=vocabulary,
+                               multiple=multiple)
+                 for rooms in (c.train, c.val))
+        for n, c in corpora.items()}
     if others_from is not None:
         _take_networks(nets, bundle_path(others_from, rt, vocabulary), m,
                        [n for n in NETWORKS if n not in modules])
     final: dict[str, dict[str, float]] = {}
-    for name in NETWORKS:
-        if name not in modules:
-            continue
-        final[name] = train_module(name, nets[name], source, val, cfg, device, run_dir, log,
+    for name, run in runs.items():
+        source, val = sources[run.train.train_rooms]
+        final[name] = train_module(name, nets[name], source, val, run, device, run_dir, log,
                                    progress)
         echo(f'{rt}/{name}: ' + ', '.join(f'{k} {v:.4f}' for k, v in final[name].items()))
-    if set(modules) != set(NETWORKS) and others_from is None:
+    if not exporting:
         log_file.close()
         echo(f'{rt}: trained {", ".join(modules)}; run again over all modules to export')
         return None
+    corpus = corpora[t.train_rooms]
+    val = sources[t.train_rooms][1]
     table = component_table(nets, val, cfg, device, rt)
     models, co = model_cooccurrence(rt, corpus.train, vocabulary)
     bundle = Bundle(rt, cfg, nets, co, models, {'components': table},
@@ -439,6 +478,14 @@ def format_components(tables: dict[str, dict[str, dict[str, float]]],
     return '\n'.join(lines)
 
 
+def check_room_types(cfg: PipelineConfig, known) -> None:
+    """ValueError, one sentence, where ``cfg.room_types`` names a room type not ``known``."""
+    for rt in cfg.room_types:
+        if rt not in known:
+            raise ValueError(f'the configuration {cfg.name[:40]!r} has settings for room type '
+                             f'{rt[:40]!r}, which is none of {", ".join(known)}')
+
+
 def train(types: list[str] | None, cfg: PipelineConfig, run_root: Path, weights_dir: Path,
           progress: bool = True, echo: Callable[[str], None] = print,
           modules: tuple[str, ...] = NETWORKS,
@@ -458,6 +505,7 @@ def train(types: list[str] | None, cfg: PipelineConfig, run_root: Path, weights_
             raise ValueError(f'{data_dir} holds no {missing[0]} rooms; its room types are '
                              f'{", ".join(specs)}')
     known = data_vocabulary(data_dir).room_types
+    check_room_types(cfg, known)
     out = {}
     for rt in types if types is not None else list(known):
         if rt not in known:
