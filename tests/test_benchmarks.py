@@ -207,3 +207,12 @@ def test_home_tables_tiny(tmp_path):
             in result.stdout)
     assert 'dining: 2 rooms derived, ' in result.stdout
     assert '  3dfront  hallway       1 longer ' in result.stdout
+
+
+@pytest.mark.slow
+def test_size_bands_tiny():
+    out = run('size_bands.py', '-n', '1', '--room-type', 'bathroom')
+    lines = [line for line in out.splitlines() if line.startswith('bathroom')]
+    assert [line.split()[1] for line in lines] == ['square', 'up', 'up']
+    # every room of every band valid and keeping the robot promise
+    assert all(line.split()[-7:-4] == ['1', '1', '1'] for line in lines), out
