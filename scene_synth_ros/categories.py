@@ -516,10 +516,11 @@ ROOM_TYPE_ALIASES = {
 
 @dataclass(frozen=True)
 class Vocabulary:
-    """The room types and categories one call knows: the paper's four, with the category
-    sets of the data set a model was trained on (``specs``) in place of, or beside, them.
-    Weights carry theirs (``networks.bundle.weights_vocabulary``), a data set its own
-    (``dataset.yaml``); ``PAPER`` knows the paper's table alone. The paper's table stays the
+    """The room types and categories one call knows: the package's (``ROOM_TYPES``), with
+    the category sets of the data set a model was trained on (``specs``) in place of, or
+    beside, them. Weights carry theirs (``networks.bundle.weights_vocabulary``), a data set its
+    own (``dataset.yaml``); ``PAPER`` knows the package's tables alone (the paper's, and
+    ``home_tables``' for the rooms of a home beyond it). The paper's table stays the
     description of the embedded corpus whatever a vocabulary defines.
 
     Immutable and hashable: a value passed to the parser, the catalog, the renderer and the
@@ -566,7 +567,7 @@ class Vocabulary:
 
     @cached_property
     def room_types(self) -> tuple[str, ...]:
-        """Every room type known: the paper's four, then those the data set adds."""
+        """Every room type known: the package's, then those the data set adds."""
         return ROOM_TYPES + tuple(rt for rt in self._defined if rt not in ROOM_TYPES)
 
     def resolve(self, name: str) -> str:

@@ -37,7 +37,7 @@ def weights_vocabulary(args) -> Vocabulary:
 
 def room_types(value: str, vocabulary: Vocabulary = PAPER) -> list[str]:
     """The room types a ``--room-type`` value names: one, or every one for ``all`` (the
-    paper's four, or every room type of ``vocabulary``, the weights' in use)."""
+    package's room types, or every room type of ``vocabulary``, the weights' in use)."""
     if value == 'all':
         return list(vocabulary.room_types)
     return [vocabulary.resolve(value)]

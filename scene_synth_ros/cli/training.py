@@ -9,8 +9,8 @@ from .common import WEIGHTS_DIR_HELP, UserError, room_types
 
 def add_parser(sub) -> None:
     c = sub.add_parser('train', help='train the four networks of a room type (resumable)')
-    c.add_argument('--room-type', default='all', help='bedroom, living, office, bathroom, a '
-                   'comma list of them, or all')
+    c.add_argument('--room-type', default='all', help='a room type (bedroom, living, office, '
+                   'bathroom, kitchen, dining, hallway), a comma list of them, or all')
     c.add_argument('--config', help='model and training configuration (YAML; default: '
                    'config/compact.yaml)')
     c.add_argument('--device', choices=('cpu', 'cuda', 'auto'), help='overrides the config')

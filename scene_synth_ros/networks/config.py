@@ -1,8 +1,8 @@
 """Configuration of the four networks and of their training, read from YAML.
 
 Shipped configurations live in ``config/``: ``compact.yaml`` (the default: 64 px images,
-quarter-width ResNets, sized so that all four room types train on a 2-core CPU within four
-hours), ``paper.yaml`` (the paper's 256 px input and full ResNet-18/34 widths) and
+quarter-width ResNets, sized so that the paper's four room types train on a 2-core CPU
+within four hours), ``paper.yaml`` (the paper's 256 px input and full ResNet-18/34 widths) and
 ``shipped.yaml`` (the compact networks with the schedules of the shipped weights: some
 modules, and one module of one room type, train apart from the ``train`` section, stated in
 its ``modules`` and ``room_types`` sections).

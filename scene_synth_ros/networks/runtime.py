@@ -78,8 +78,9 @@ CALL_NETWORKS = {'category': ('category',), 'location': ('location',),
 
 # The environment variable naming the directory of exported graphs; ``off`` keeps none.
 CACHE_ENV = 'SCENE_SYNTH_ROS_CACHE'
-# The most graphs kept there: four calls of four room types, four times over (about 200 MB).
-CACHE_GRAPHS = 64
+# The most graphs kept there: four calls of seven room types, and the category and location
+# calls at four larger sizes of room each, twice over (about 400 MB).
+CACHE_GRAPHS = 128
 
 
 def graph_cache_dir() -> Path | None:

@@ -491,7 +491,7 @@ def train(types: list[str] | None, cfg: PipelineConfig, run_root: Path, weights_
           modules: tuple[str, ...] = NETWORKS,
           others_from: Path | None = None,
           data_dir: Path | None = None) -> dict[str, Bundle | None]:
-    """Train each of ``types`` (None: the paper's four, or with ``data_dir`` every room type
+    """Train each of ``types`` (None: the package's room types, or with ``data_dir`` every room type
     of the imported data set there, on the category sets it describes)."""
     unknown = sorted(set(modules) - set(NETWORKS))
     if unknown:
