@@ -11,14 +11,19 @@ object's front (local y), ``depth`` from back to front (local x, the front faces
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property, lru_cache
 import math
 from typing import Any, Iterable
 
+from . import home_tables
 from .errors import RoomTypeConflict, UnknownRoomType
 
-ROOM_TYPES = ('bedroom', 'living', 'office', 'bathroom')
+# The paper's room types (its appendix table), then the rooms of real homes beyond them
+# (``home_tables``): every room type the package furnishes.
+PAPER_ROOM_TYPES = ('bedroom', 'living', 'office', 'bathroom')
+HOME_ROOM_TYPES = ('kitchen', 'dining', 'hallway')
+ROOM_TYPES = PAPER_ROOM_TYPES + HOME_ROOM_TYPES
 
 # Rooms per type after the paper's filtering (section 4).
 ROOMS_IN_TABLE = {'bedroom': 6300, 'living': 1400, 'office': 1200, 'bathroom': 6800}
@@ -26,7 +31,9 @@ ROOMS_IN_TABLE = {'bedroom': 6300, 'living': 1400, 'office': 1200, 'bathroom': 6
 # Side of the square area, in metres, that a top-down image of each room type covers. A room
 # whose floor does not fit in this square cannot be rendered and is rejected on input; at
 # 64 px this is 9.4 cm (bedroom), 12.5 cm (living), 10.9 cm (office), 7.8 cm (bathroom) a pixel.
-ROOM_SIZE_CAP = {'bedroom': 6.0, 'living': 8.0, 'office': 7.0, 'bathroom': 5.0}
+ROOM_SIZE_CAP = {'bedroom': 6.0, 'living': 8.0, 'office': 7.0, 'bathroom': 5.0,
+                 # at the bedroom's 9.4 cm a pixel: a hallway's 0.9 m path is ten pixels
+                 'kitchen': 6.0, 'dining': 7.0, 'hallway': 6.0}
 
 # Doors and windows per room type, from the same table (architecture, not furniture).
 ARCHITECTURE_COUNTS = {
@@ -108,6 +115,13 @@ class CategoryInfo:
         return True
 
 
+# The home's categories beyond the paper's table in roles the paper's categories have too;
+# they come last in those roles, so that the corpus draws among the paper's categories as
+# before (a paper room holds none of them).
+_HOME_SEATS = ('dining chair', 'bar stool')
+_HOME_OPERATED = ('counter', 'kitchen sink', 'stove', 'fridge', 'dishwasher', 'sideboard',
+                  'shoe bench', 'coat rack')
+
 # What a category is for, as the design rules, the corpus and insertion ask it: the one
 # definition of each role, which a category's description carries (``CategoryInfo.roles``).
 # Members are listed in the order the corpus draws among them.
@@ -122,10 +136,11 @@ ROLES: dict[str, tuple[str, ...]] = {
     # a chair needs a table to sit at
     'chair': ('office chair', 'straight chair', 'chair'),
     # what people sit on at a table or a desk
-    'table seat': ('office chair', 'straight chair', 'chair', 'stool'),
+    'table seat': ('office chair', 'straight chair', 'chair', 'stool') + _HOME_SEATS,
     'bench': ('bench chair',),
     # seats light enough to be pulled out of the way of what they stand before
-    'loose seat': ('office chair', 'straight chair', 'chair', 'stool', 'ottoman', 'bench chair'),
+    'loose seat': ('office chair', 'straight chair', 'chair', 'stool', 'ottoman', 'bench chair')
+    + _HOME_SEATS,
     # used seated, from the front
     'worktop': ('desk', 'dressing table', 'piano'),
     # a worktop that is not complete without its seat
@@ -139,17 +154,32 @@ ROLES: dict[str, tuple[str, ...]] = {
     'operated front': ('wardrobe', 'dresser', 'dressing table', 'shelving', 'shoes cabinet',
                        'cabinet', 'washer', 'toilet', 'bidet', 'sink', 'shower', 'bathtub',
                        'stand', 'tv stand', 'desk', 'piano', 'fireplace', 'whiteboard',
-                       'water machine'),
+                       'water machine') + _HOME_OPERATED,
+    # the rooms of a home beyond the paper's four (kitchen, dining room, hallway)
+    # the kitchen's work triangle: the cook walks between these three
+    'work triangle': ('kitchen sink', 'stove', 'fridge'),
+    # units that stand side by side along a wall under one continuous worktop
+    'counter run': ('counter', 'kitchen sink', 'stove', 'dishwasher'),
+    # doors, drawers or an oven's drop-down flap swing out into the floor before the front
+    'door front': ('counter', 'kitchen sink', 'stove', 'fridge', 'dishwasher', 'sideboard'),
+    # tables people sit at for a meal (a kitchen island's seats face its front overhang)
+    'dining surface': ('dining table', 'kitchen island'),
+    # what people sit on at a dining surface
+    'dining seat': ('dining chair', 'bar stool'),
+    # small appliances that stand on a worktop, near a socket on the wall behind it
+    'worktop appliance': ('microwave', 'coffee machine', 'toaster'),
+    # what one uses on coming in by a home's entrance door
+    'entrance': ('shoe bench', 'coat rack', 'console table'),
 }
 
 
 def members(role: str) -> tuple[str, ...]:
-    """The paper's categories that have ``role``, in ``ROLES``'s order."""
+    """The package's categories (``CATEGORIES``) that have ``role``, in ``ROLES``'s order."""
     return ROLES[role]
 
 
 def roles_of(name: str) -> frozenset[str]:
-    """The roles the paper's table gives category ``name`` (none for a name it lacks)."""
+    """The roles the package gives category ``name`` (none for a name it lacks)."""
     return frozenset(r for r, names in ROLES.items() if name in names)
 
 
@@ -178,6 +208,25 @@ PLAUSIBLE_PARENTS: dict[str, dict[str, float]] = {
     'glass': {'coffee table': 5, 'desk': 1, 'stand': 1},
     'bottle': {'coffee table': 5, 'desk': 1, 'stand': 1},
     'fruit bowl': {'coffee table': 5, 'desk': 1},
+    # at the back of a worktop, by a socket; seldom on an island, whose top is where people
+    # eat. Not on a kitchen sink: its box rises to the top of its tap.
+    'microwave': {'counter': 6, 'kitchen island': 1},
+    'coffee machine': {'counter': 6, 'kitchen island': 1, 'sideboard': 1},
+    'toaster': {'counter': 6, 'kitchen island': 1},
+}
+
+# In the rooms of a home beyond the paper's, the paper's small things stand on that room's
+# surfaces too, by these weights beside their ``PLAUSIBLE_PARENTS``: tableware and a vase on
+# the dining table or the worktop, a plant or a vase on a sideboard or a console table, books
+# on a shelf. Only those rooms' categories get them (``paper_spec``), so the paper's rooms
+# and the weights trained on them are as they were.
+HOME_PARENTS: dict[str, dict[str, float]] = {
+    'cup': {'dining table': 5, 'counter': 3, 'kitchen island': 3},
+    'bottle': {'dining table': 3, 'counter': 4, 'kitchen island': 2},
+    'vase': {'dining table': 4, 'sideboard': 4, 'console table': 5, 'counter': 1},
+    'plant': {'sideboard': 3, 'console table': 3, 'counter': 2, 'dining table': 1,
+              'shoe bench': 1},
+    'book': {'shelving': 4, 'dining table': 1, 'counter': 1},
 }
 
 _SURFACES_LAMP = ('stand', 'desk', 'dresser', 'dressing table', 'shoes cabinet', 'tv stand')
@@ -281,6 +330,53 @@ CATEGORIES: dict[str, CategoryInfo] = {c.name: c for c in (
     _c('glass', 'second', (0.06, 0.09), (0.06, 0.09), (0.1, 0.16), _SURFACES_TABLEWARE),
     _c('bottle', 'second', (0.07, 0.1), (0.07, 0.1), (0.25, 0.35), _SURFACES_TABLEWARE),
     _c('fruit bowl', 'second', (0.2, 0.3), (0.2, 0.3), (0.08, 0.15), _SURFACES_TABLEWARE),
+    # The rooms of a home beyond the paper's four: kitchen, dining room, hallway. Sizes from
+    # manufacturers' standard ranges (docs/catalog.md lists them); last, so that the paper's
+    # categories keep their places (plot colours, model previews). Kitchen units stand at
+    # one worktop height, 0.86 to 0.92 m (0.9 m in Europe, 36 in in the USA).
+    _c('counter', 'first', (0.6, 3.6), (0.6, 0.65), (0.86, 0.92), against_wall=True,
+       description='a run of kitchen base cabinets under one worktop, doors and drawers at '
+                   'the front'),
+    _c('kitchen sink', 'first', (0.6, 1.2), (0.6, 0.65), (1.1, 1.25), against_wall=True,
+       description='sink base unit: a basin in a worktop of counter height, its tap at the '
+                   'back the highest point (as the washbasin\'s)'),
+    _c('stove', 'first', (0.5, 1.0), (0.6, 0.65), (0.86, 0.92), against_wall=True,
+       description='free-standing cooker: a hob on top, the oven door at the front'),
+    _c('fridge', 'first', (0.55, 0.91), (0.6, 0.75), (0.82, 2.0), against_wall=True,
+       description='refrigerator, under-counter (about 0.85 m) to tall fridge-freezer or '
+                   'side-by-side (up to 2 m), doors at the front'),
+    _c('dishwasher', 'first', (0.45, 0.6), (0.57, 0.62), (0.82, 0.87), against_wall=True,
+       description='free-standing dishwasher, slimline (0.45 m) or full size (0.6 m), its '
+                   'door drops open at the front'),
+    _c('kitchen island', 'first', (1.2, 2.8), (0.8, 1.2), (0.88, 0.94),
+       description='free-standing worktop block: cabinets at the back, at the front an '
+                   'overhang that bar stools tuck under'),
+    _c('bar stool', 'first', (0.36, 0.48), (0.36, 0.48), (0.62, 1.05),
+       description='tall stool for a counter or an island, a footrest ring; a low back on '
+                   'the taller ones'),
+    _c('dining table', 'first', (0.9, 2.8), (0.8, 1.2), (0.72, 0.77),
+       description='dining table for 4 to 10 seats, rectangular, or round (oval when long): '
+                   'the top inscribed in the box'),
+    _c('dining chair', 'first', (0.42, 0.55), (0.48, 0.6), (0.8, 1.02),
+       description='dining chair with a back, seat front at +x'),
+    _c('sideboard', 'first', (1.2, 2.2), (0.4, 0.5), (0.7, 0.95), against_wall=True,
+       description='low dining-room storage: doors and drawers at the front'),
+    _c('shoe bench', 'first', (0.6, 1.2), (0.3, 0.4), (0.42, 0.5), against_wall=True,
+       description='hallway bench to sit on, a shelf of shoes below the seat'),
+    _c('console table', 'first', (0.8, 1.6), (0.25, 0.4), (0.72, 0.85), against_wall=True,
+       description='narrow table on legs against a wall'),
+    _c('coat rack', 'first', (0.6, 1.4), (0.25, 0.4), (1.7, 2.0), against_wall=True,
+       description='hallway coat rack standing against the wall: a frame with a row of '
+                   'hooks and a hat shelf (a coat stand in the open is a hanger)'),
+    _c('microwave', 'second', (0.44, 0.62), (0.32, 0.45), (0.25, 0.36),
+       tuple(PLAUSIBLE_PARENTS['microwave']),
+       description='microwave oven, door at the front'),
+    _c('coffee machine', 'second', (0.18, 0.32), (0.28, 0.45), (0.3, 0.45),
+       tuple(PLAUSIBLE_PARENTS['coffee machine']),
+       description='espresso machine, spout and drip tray at the front'),
+    _c('toaster', 'second', (0.26, 0.4), (0.15, 0.22), (0.18, 0.22),
+       tuple(PLAUSIBLE_PARENTS['toaster']),
+       description='pop-up toaster, slots along its width'),
 )}
 
 
@@ -408,7 +504,14 @@ def _pair(v) -> tuple[float, float]:
 
 
 # Other names accepted for a room type (after lower-casing, '_' read as ' ').
-ROOM_TYPE_ALIASES = {'living room': 'living', 'livingroom': 'living', 'bed room': 'bedroom'}
+ROOM_TYPE_ALIASES = {
+    'living room': 'living', 'livingroom': 'living', 'bed room': 'bedroom',
+    'master bedroom': 'bedroom', 'masterbedroom': 'bedroom',
+    'living dining room': 'living', 'livingdiningroom': 'living',     # open plan
+    'dining room': 'dining', 'diningroom': 'dining',
+    'hall': 'hallway', 'corridor': 'hallway', 'entrance': 'hallway', 'entrance hall': 'hallway',
+    'entryway': 'hallway', 'aisle': 'hallway',
+}
 
 
 @dataclass(frozen=True)
@@ -503,16 +606,28 @@ class Vocabulary:
 
 @lru_cache(maxsize=None)
 def paper_spec(room_type: str) -> RoomTypeSpec:
-    """The category set of one of the paper's room types, from its table."""
-    rooms = ROOMS_IN_TABLE[room_type]
+    """The category set of one of the package's room types, from its table: the paper's,
+    or for the rooms of a home beyond it ``home_tables``' (whose small things may stand on
+    that room's surfaces, ``HOME_PARENTS``)."""
+    home = room_type in HOME_ROOM_TYPES
+    rooms = (home_tables.ROOMS_IN_TABLE if home else ROOMS_IN_TABLE)[room_type]
+    table = (home_tables.TABLE_COUNTS if home else TABLE_COUNTS)[room_type]
     cats = []
-    for name, count in TABLE_COUNTS[room_type].items():
+    for name, count in table.items():
         info = CATEGORIES[name]
+        if home and name in HOME_PARENTS:
+            extra = {p: w for p, w in HOME_PARENTS[name].items() if p in table}
+            info = replace(info, supported_by=info.supported_by + tuple(
+                p for p in extra if p not in info.supported_by),
+                parents=info.parents + tuple((p, float(w)) for p, w in extra.items()))
         freq = count / rooms
         cats.append(RoomCategorySpec(info, count, freq, info.mean_footprint * freq))
-    arch = ARCHITECTURE_COUNTS[room_type]
+    if home:
+        per_room = home_tables.OPENINGS_PER_ROOM[room_type]
+    else:
+        per_room = {k: n / rooms for k, n in ARCHITECTURE_COUNTS[room_type].items()}
     return RoomTypeSpec(room_type, rooms, ROOM_SIZE_CAP[room_type], tuple(cats),
-                        arch['door'] / rooms, arch['window'] / rooms)
+                        per_room['door'], per_room['window'])
 
 
 PAPER = Vocabulary.paper()

@@ -73,11 +73,12 @@ def _cat(parts: list[torch.Tensor]) -> torch.Tensor:
 
 
 def _by_call(requests: dict[int, Request]) -> list[list[int]]:
-    """The keys of ``requests``, in order, grouped by the bundle and module they call."""
-    calls: dict[tuple[int, str], list[int]] = {}
+    """The keys of ``requests``, in order, grouped by the bundle and module they call and
+    the size of their images (rooms larger than their type's square are seen larger)."""
+    calls: dict[tuple, list[int]] = {}
     for k in sorted(requests):
         r = requests[k]
-        calls.setdefault((id(r.networks), r.module), []).append(k)
+        calls.setdefault((id(r.networks), r.module, tuple(r.args[0].shape[2:])), []).append(k)
     return list(calls.values())
 
 

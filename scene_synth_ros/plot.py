@@ -65,7 +65,14 @@ def _palette() -> tuple[tuple[float, float, float, float], ...]:
 @lru_cache(maxsize=1)
 def category_colors() -> dict[str, tuple[float, float, float, float]]:
     """The fixed RGBA colour of every category of ``categories.CATEGORIES``."""
-    pal = _palette()
+    # The categories beyond the paper's 52 go on through the palette's last entries, then
+    # Dark2 and Set1 without its grey, none as pale as the floor; a data set's categories
+    # keep hashing into the palette alone.
+    more = [(*c, 1.0) for name, n in (('Dark2', 8), ('Set1', 8))
+            for c in matplotlib.colormaps[name].colors[:n]]
+    floor = matplotlib.colors.to_rgb(FLOOR_COLOR)
+    pal = tuple(c for c in _palette() + tuple(more)
+                if max(abs(a - b) for a, b in zip(c[:3], floor, strict=True)) > 0.1)
     return {name: pal[k % len(pal)] for k, name in enumerate(CATEGORIES)}
 
 

@@ -22,13 +22,18 @@ and rotated by ``yaw``, sampled by ``N x N`` pixels of ``m = extent / N`` metres
 ``centre + R(yaw) (u, v)``. The row index grows with local +y: show images with
 ``origin='lower'`` to see them the way the world is drawn.
 
-The room's frame (``Frame.for_room``, the global view every module sees and the only
-definition of it): the room is seen in its own axes, those of its longest wall with the
-wall's direction reduced to [-45, 45) degrees (``room_axis_yaw``; 0 for an axis-aligned room),
-centred on its bounding box in those axes, over the room type's square of
-``ROOM_SIZE_CAP`` metres. A room fits iff that bounding box fits in the square
-(``RoomDoesNotFit`` otherwise); layout validation asks the same question through
-``room_frame_box``. Local views (``Frame.local``) have the same scale, centred at a point.
+The room's frame (``Frame.for_room``, the global view the category and location modules
+see and the only definition of it): the room is seen in its own axes, those of its longest
+wall with the wall's direction reduced to [-45, 45) degrees (``room_axis_yaw``; 0 for an
+axis-aligned room), centred on its bounding box in those axes. Its pixels are always the room
+type's size (``size_cap`` metres over the networks' ``resolution`` pixels): a room that fits
+the type's square is seen over that square, as the paper's rooms are; a larger one over a
+larger square of as many more pixels as it needs, rounded up to a multiple the networks
+divide evenly (the location module is fully convolutional and the category module pools
+globally, so both take any size). Rooms up to ``MAX_ROOM_SIDE`` metres along their longer
+side fit (``RoomDoesNotFit`` otherwise); layout validation asks the same question through
+``room_frame_box``. Local views (``Frame.local``) have the same scale, centred at a point,
+and always the networks' own size.
 
 Pixel rule: a pixel belongs to a shape iff its centre lies inside the shape or on its boundary
 (closed shapes; a tolerance of ``EPS_PX`` pixel absorbs floating-point rounding, so a centre
@@ -63,6 +68,7 @@ import numpy as np
 from .categories import PAPER, Vocabulary
 from .errors import SceneSynthError, number, with_article
 from .scene import Room, Scene
+from .thresholds import MAX_ROOM_SIDE
 
 # Channel indices.
 ROOM = 0
@@ -131,7 +137,7 @@ def room_axis_yaw(room: Room) -> float:
 
 @dataclass(frozen=True)
 class RoomFrameBox:
-    """A room's bounding box in its own axes and the square its type may cover."""
+    """A room's bounding box in its own axes, its type's square and the largest room."""
 
     room_type: str
     yaw: float
@@ -140,7 +146,18 @@ class RoomFrameBox:
     cap: float                     # side of the room type's square, metres
 
     @property
+    def bound(self) -> float:
+        """The longest side a room of this type may have, metres: ``MAX_ROOM_SIDE``, or the
+        type's square where a data set's type has a larger one."""
+        return max(self.cap, MAX_ROOM_SIDE)
+
+    @property
     def fits(self) -> bool:
+        return max(self.span) <= self.bound + FIT_TOLERANCE
+
+    @property
+    def in_square(self) -> bool:
+        """Whether the room fits its type's square (and is seen at the networks' size)."""
         return max(self.span) <= self.cap + FIT_TOLERANCE
 
 
@@ -158,16 +175,15 @@ def room_frame_box(room: Room, vocabulary: Vocabulary = PAPER) -> RoomFrameBox:
 
 
 class RoomDoesNotFit(SceneSynthError, ValueError):
-    """A room larger, in its own axes, than the square its type's images cover."""
+    """A room longer, in its own axes, than the longest a room may be (``RoomFrameBox``)."""
 
     def __init__(self, box: RoomFrameBox, subject: str | None = None):
         self.box = box
         rt = box.room_type
         long_, short = (number(v) for v in sorted(box.span, reverse=True))
-        cap = number(box.cap)
         super().__init__(f'{subject or "the " + rt} is {long_} m x {short} m along its walls, '
-                         f'which does not fit the {cap} m x {cap} m square '
-                         f'{with_article(rt)} may cover')
+                         f'longer than the {number(box.bound)} m {with_article(rt)} may be '
+                         f'along its longer side')
 
 
 @dataclass(frozen=True)
@@ -193,13 +209,18 @@ class Frame:
 
     @classmethod
     def for_room(cls, room: Room, resolution: int = DEFAULT_RESOLUTION,
-                 vocabulary: Vocabulary = PAPER) -> 'Frame':
-        """The room's frame (see the module docstring); ``RoomDoesNotFit`` if the room is
-        larger than its type's square in its own axes."""
+                 vocabulary: Vocabulary = PAPER, multiple: int = 1) -> 'Frame':
+        """The room's frame (see the module docstring): its type's square at ``resolution``
+        pixels, or for a room larger than that square, as many more pixels of the same size
+        as it needs, a multiple of ``multiple``; ``RoomDoesNotFit`` if the room is longer
+        than a room may be."""
         box = room_frame_box(room, vocabulary)
         if not box.fits:
             raise RoomDoesNotFit(box)
-        return cls(box.centre, box.yaw, box.cap, resolution)
+        if box.in_square:
+            return cls(box.centre, box.yaw, box.cap, resolution)
+        n = grown_resolution(max(box.span), box.cap / resolution, multiple)
+        return cls(box.centre, box.yaw, n * box.cap / resolution, n)
 
     @classmethod
     def local(cls, room_type: str, point: Iterable[float], yaw: float,
@@ -230,6 +251,14 @@ class Frame:
 
     def pixel_to_world(self, ij) -> np.ndarray:
         return pixel_to_world(self, ij)
+
+
+def grown_resolution(side: float, metres_per_pixel: float, multiple: int = 1) -> int:
+    """Pixels of a square of at least ``side`` metres at ``metres_per_pixel``, rounded up to
+    a multiple of ``multiple``."""
+    multiple = max(1, int(multiple))
+    pixels = math.ceil((side - FIT_TOLERANCE) / metres_per_pixel - EPS_PX)
+    return max(multiple, -(-pixels // multiple) * multiple)
 
 
 def pixel_to_world(frame: Frame, ij) -> np.ndarray:

@@ -65,8 +65,8 @@ class ServerConfig:
     room_type: str = setting(
         'bedroom', 'room type of layouts arriving on ~/room_polygon, one of those of the '
         'weights: the shipped weights have ' + ', '.join(ROOM_TYPES) + ' (also accepted: '
-        + ', '.join(f"'{a}'" for a in ROOM_TYPE_ALIASES) + '); weights trained on an '
-        'imported data set, its room types')
+        'aliases such as ' + ', '.join(f"'{a}'" for a in list(ROOM_TYPE_ALIASES)[:4]) + '); '
+        'weights trained on an imported data set, its room types')
     seed: int = setting(
         0, 'seed of the next room, object or suggestion; reads as the one the next request '
         'will use (each request takes the next integer); set it to replay a room',

@@ -325,9 +325,11 @@ class Synthesizer:
                                      f'the {rt} categories the networks know')
         bundle = self.bundle(rt)
         m = bundle.config.model
-        frame = Frame.for_room(room, m.resolution, self.vocabulary)
-        grid = Frame(frame.centre, frame.yaw, frame.extent, m.location_resolution)
-        n = m.location_resolution
+        frame = Frame.for_room(room, m.resolution, self.vocabulary,
+                               bundle.networks['location'].multiple)
+        # The location grid covers the frame at the grid's own pixel size.
+        n = frame.resolution * m.location_resolution // m.resolution
+        grid = Frame(frame.centre, frame.yaw, frame.extent, n)
         ii, jj = np.meshgrid(np.arange(n), np.arange(n), indexing='ij')
         centres = grid.pixel_to_world(np.stack([ii, jj], -1)).reshape(-1, 2)
         floor_mask = shapely.contains_xy(room.polygon, centres[:, 0], centres[:, 1])
@@ -615,8 +617,9 @@ class Synthesizer:
     def _local_images(self, ctx: _Context, scene: Scene, points: np.ndarray,
                       yaws: list[float]) -> torch.Tensor:
         """The scene image translated to each point and turned to each yaw, as a batch."""
-        r = self._renderer(ctx.frame.resolution)
-        n = ctx.frame.resolution
+        # Crops are the networks' own size whatever the room's: a view around a point.
+        n = ctx.bundle.config.model.resolution
+        r = self._renderer(n)
         c = FIRST_CATEGORY + len(ctx.spec.names)
         # One buffer per room, drawn over for every batch of crops (a fresh 750 KB image per
         # crop cost page faults and a copy into the batch). The networks read it before the

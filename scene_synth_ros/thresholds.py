@@ -17,6 +17,9 @@ DOOR_ZONE_SIDE_MARGIN = 0.10    # ...and this much wider than the door on each s
 
 # ---- what a layout must be to be furnished (``schema``) --------------------------------
 MIN_FLOOR_AREA = 2.0            # m^2: a smaller floor is degenerate, not a room
+# m along a room's longer side, in its own axes (``render.room_frame_box``): the longest
+# rooms of real homes (open-plan living-dining rooms of 3D-FRONT reach 12 m) with a margin
+MAX_ROOM_SIDE = 16.0
 MIN_VERTEX_SPACING = 1e-3       # m: consecutive vertices closer than this repeat each other
 WALL_HEIGHT_RANGE = (1.8, 6.0)  # m, inclusive (also in room_layout.schema.json)
 OPENING_TOLERANCE = 0.01        # m: an opening's centre and ends may miss its wall by this
@@ -118,3 +121,18 @@ BED_STRETCH = 0.6
 # Fronts a person uses: one should not face a wall closer than 0.3 m (a wardrobe's doors, a
 # chair's knees, a toilet's user).
 WALL_CLEARANCE = 0.3
+
+# ---- the rooms of a home beyond the paper's (``rules.home``, ``corpus``) ----------------
+# Kitchen planning (NKBA Kitchen Planning Guidelines): each leg of the sink-stove-fridge
+# triangle 4 to 9 ft, the three together at most 26 ft; a work aisle 42 in (1.07 m) for one
+# cook, of which the corpus keeps 1.0 m before the units.
+TRIANGLE_LEG = (1.2, 2.7)
+TRIANGLE_TOTAL = 7.9
+KITCHEN_AISLE = 1.0
+RUN_GAP = 0.05          # m between two units of one counter run
+DOOR_SWING = 0.6        # m an appliance's or cabinet's door or flap needs before its front
+# Dining: a chair needs 0.3 m behind it to be pulled out, and the table 0.75 m on a side
+# where people sit (chair and pull-out; planning guides ask 0.75-0.9 m).
+PULL_OUT = 0.3
+DINING_CLEARANCE = 0.75
+HALLWAY_PATH = 0.9      # m: the clear walking width of a hallway (accessible routes: 36 in)

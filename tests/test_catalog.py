@@ -11,7 +11,14 @@ import pytest
 import trimesh
 
 from scene_synth_ros import catalog, meshes
-from scene_synth_ros.categories import CATEGORIES
+from scene_synth_ros.categories import (
+    CATEGORIES,
+    PLAUSIBLE_PARENTS,
+    ROLES,
+    TABLE_COUNTS,
+    paper_spec,
+    roles_of,
+)
 from scene_synth_ros.errors import UnknownCategory
 from scene_synth_ros.scene import PlacedObject, Room, Scene, box_corners
 
@@ -19,7 +26,10 @@ TOL = 1e-3   # metres
 ALL_CATEGORIES = list(CATEGORIES)
 # categories whose every variant (all three styles) is checked in full
 FULL_CATEGORIES = ('double bed', 'office chair', 'wardrobe', 'toilet', 'television', 'sofa',
-                   'plant', 'cup')
+                   'plant', 'cup', 'counter', 'kitchen sink', 'fridge', 'dining table')
+# the categories of a home beyond the paper's table (kitchens, dining rooms, hallways)
+PAPER_CATEGORIES = {c for counts in TABLE_COUNTS.values() for c in counts}
+HOME_CATEGORIES = [c for c in CATEGORIES if c not in PAPER_CATEGORIES]
 
 
 def _one_each():
@@ -67,6 +77,66 @@ def _world_bounds(sm: trimesh.Scene, object_id: str) -> np.ndarray:
         pts.append(trimesh.transform_points(sm.geometry[geom].vertices, matrix))
     pts = np.vstack(pts)
     return np.array([pts.min(axis=0), pts.max(axis=0)])
+
+
+# ---------------------------------------------------------------------------------------
+# categories
+
+
+def test_every_category_info_is_consistent():
+    for name, info in CATEGORIES.items():
+        assert info.name == name and info.tier in ('first', 'second'), name
+        for lo, hi in (info.width, info.depth, info.height):
+            assert 0 < lo <= hi < 4.0, (name, lo, hi)
+        assert info.roles == roles_of(name) and info.roles <= set(ROLES), name
+        parents = [p for p, _ in info.parents]
+        if info.tier == 'second':
+            # a second-tier object stands on first-tier parents, where a designer expects it
+            assert info.supported_by, name
+            assert all(CATEGORIES[p].tier == 'first' for p in info.supported_by), name
+            assert set(parents) <= set(info.supported_by), name
+            assert all(w > 0 for _, w in info.parents), name
+            assert parents == list(PLAUSIBLE_PARENTS.get(name, {})), name
+        else:
+            assert not info.supported_by and not parents, name
+    for role, names in ROLES.items():
+        assert names and len(set(names)) == len(names), role
+        assert set(names) <= set(CATEGORIES), (role, set(names) - set(CATEGORIES))
+
+
+def test_the_home_categories_come_after_the_papers_and_leave_them_alone():
+    assert len(HOME_CATEGORIES) == 16
+    names = list(CATEGORIES)
+    # appended: the paper's categories keep their places (plot colours, previews)
+    assert names[:len(PAPER_CATEGORIES)] == [c for c in names if c in PAPER_CATEGORIES]
+    for role, members in ROLES.items():
+        # the corpus draws among a role's members in order: the paper's come first
+        paper = [c in PAPER_CATEGORIES for c in members]
+        assert paper == sorted(paper, reverse=True), role
+    for c in HOME_CATEGORIES:
+        info = CATEGORIES[c]
+        assert info.description and info.roles, c
+        assert all(c not in paper_spec(rt) for rt in TABLE_COUNTS)
+        # nothing of the paper's stands on them: the paper's category infos are unchanged
+        assert not any(c in CATEGORIES[p].supported_by for p in PAPER_CATEGORIES), c
+    # the rules to come find a kitchen's pieces by role
+    assert set(ROLES['work triangle']) == {'kitchen sink', 'stove', 'fridge'}
+    assert {'fridge', 'dishwasher', 'stove', 'sideboard', 'counter'} <= set(ROLES['door front'])
+    assert {'dining chair', 'bar stool'} <= set(ROLES['table seat']) & set(ROLES['dining seat'])
+    assert set(ROLES['dining surface']) == {'dining table', 'kitchen island'}
+
+
+def test_kitchen_units_share_one_worktop_height():
+    counter = CATEGORIES['counter']
+    for c in ('stove', 'dishwasher'):
+        lo, hi = CATEGORIES[c].height
+        assert counter.height[0] - 0.05 <= lo <= hi <= counter.height[1] + 0.05, c
+    # a sink unit's box rises to its tap; its worktop is a counter's
+    for v in catalog.variants('kitchen sink'):
+        top = _parts(v, 'worktop')[0].bounds[1, 2]
+        assert counter.height[0] - TOL <= top <= counter.height[1] + TOL, v.model_id
+        tap = max(p.bounds[1, 2] for p in meshes.build_parts(v) if p.name.startswith('tap'))
+        assert tap == pytest.approx(v.height, abs=TOL) and tap - top > 0.15
 
 
 # ---------------------------------------------------------------------------------------
@@ -182,7 +252,7 @@ def _top_vertices_x(variant, band=0.01):
 
 @pytest.mark.parametrize('category', ['double bed', 'single bed', 'daybed', 'sofa', 'sofa chair',
                                       'armchair', 'office chair', 'straight chair', 'chair',
-                                      'toilet', 'sink', 'bidet'])
+                                      'toilet', 'sink', 'bidet', 'kitchen sink', 'dining chair'])
 def test_back_is_at_minus_x(category):
     """Headboards, backrests, toilet tanks and taps are the highest points, at the back."""
     for v in catalog.variants(category):
@@ -246,6 +316,58 @@ def test_special_shapes():
         assert glass and all(min(p.bounds[1, :2] - p.bounds[0, :2]) < 0.03 for p in glass)
     for v in catalog.variants('sofa'):
         assert len(_parts(v, 'arm')) == 2 and len(_parts(v, 'seat_cushion')) >= 2
+
+
+def _front_reaches(v, name):
+    """Whether a part called ``name`` reaches the front of ``v``'s box."""
+    return any(p.bounds[1, 0] == pytest.approx(v.depth / 2, abs=TOL) for p in _parts(v, name))
+
+
+def test_kitchen_shapes():
+    for v in catalog.variants('counter'):
+        # one module per 60 cm or so, each with a door or drawers, under a worktop
+        fronts = _parts(v, 'door') + [p for p in meshes.build_parts(v) if p.name == 'drawer']
+        assert len(fronts) >= round(v.width / 0.6)
+        assert all(p.centre[0] > v.depth / 2 - 0.06 for p in fronts)
+        assert _parts(v, 'worktop')[0].bounds[1, 2] == pytest.approx(v.height, abs=TOL)
+    for v in catalog.variants('stove'):
+        rings = [p for p in meshes.build_parts(v) if p.name in ('hob_ring', 'burner')]
+        assert len(rings) >= 4 and all(p.bounds[1, 2] > v.height - 0.01 for p in rings)
+        door = _parts(v, 'oven_door')[0]
+        assert door.centre[0] > v.depth / 2 - 0.06 and _front_reaches(v, 'handle')
+    for v in catalog.variants('fridge') + catalog.variants('dishwasher'):
+        assert _parts(v, 'door') and _front_reaches(v, 'handle'), v.model_id
+    for v in catalog.variants('microwave'):
+        assert _parts(v, 'window')[0].centre[0] > v.depth / 2 - 0.02
+    for v in catalog.variants('kitchen island'):
+        # doors towards the cook at the back, knee space for stools under the front overhang
+        assert all(p.centre[0] < -v.depth / 2 + 0.05 for p in _parts(v, 'door'))
+        assert _parts(v, 'carcass')[0].bounds[1, 0] < v.depth / 2 - 0.2
+    for v in catalog.variants('bar stool'):
+        assert _parts(v, 'seat')[0].bounds[1, 2] >= 0.6 - TOL
+        assert [p for p in meshes.build_parts(v) if p.name.startswith('footrest')]
+
+
+def test_dining_and_hallway_shapes():
+    for v in catalog.variants('dining table'):
+        top = _parts(v, 'top')[0]
+        assert top.bounds[0, 2] > v.height - 0.05
+        if v.style == 1:
+            # round (oval): the top is the ellipse in the box, its corners empty
+            x, y = top.vertices[:, 0] / (v.depth / 2), top.vertices[:, 1] / (v.width / 2)
+            assert (x ** 2 + y ** 2 <= 1 + 1e-6).all()
+        else:
+            legs = [p for p in meshes.build_parts(v) if p.name in ('leg', 'trestle_foot')]
+            assert len(legs) >= 2
+    for v in catalog.variants('coat rack'):
+        hooks = _parts(v, 'hook')
+        assert len(hooks) >= 3 and all(p.bounds[0, 0] < -v.depth / 2 + 0.05 for p in hooks)
+        assert all(1.2 < p.centre[2] < v.height for p in hooks)
+    for v in catalog.variants('shoe bench'):
+        assert len(_parts(v, 'shoe')) >= 2
+        assert all(p.bounds[1, 2] < v.height - 0.2 for p in _parts(v, 'shoe'))
+    for v in catalog.variants('sideboard'):
+        assert len(_parts(v, 'handle')) >= 3 and _front_reaches(v, 'handle')
 
 
 @pytest.mark.parametrize('fmt', ['glb', 'obj'])

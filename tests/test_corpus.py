@@ -8,6 +8,7 @@ import pytest
 from scene_synth_ros import geometry
 from scene_synth_ros.categories import CATEGORIES, ROOM_TYPES, room_spec
 from scene_synth_ros.corpus.generate import first_shell, generate_corpus, generate_room
+from scene_synth_ros.corpus.shell import SHELLS
 from scene_synth_ros.corpus.stats import collect
 from scene_synth_ros.scene import Scene
 from scene_synth_ros.schema import dump_scene, parse_scene
@@ -29,7 +30,7 @@ def test_physical_invariants_hold_in_every_room(rooms, room_type):
         assert geometry.blocked_doors(scene) == []
         assert geometry.under_supported(scene) == []
         assert geometry.doors_connected(scene)
-        assert 1 <= len(scene.room.doors) <= 2
+        assert 1 <= len(scene.room.doors) <= SHELLS[room_type].doors[1]
         assert 0 <= len(scene.room.windows) <= 3
         # second-tier objects stand on a parent that can hold them in this room type
         spec = room_spec(room_type)

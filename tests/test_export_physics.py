@@ -15,6 +15,7 @@ from scene_synth_ros.export.physics import (
     model_pieces,
     scene_bodies,
 )
+from scene_synth_ros.meshes import build_parts
 from scene_synth_ros.scene import PlacedObject, Room, Scene
 from scene_synth_ros.thresholds import COLLISION_TOLERANCE
 
@@ -58,6 +59,28 @@ def test_a_table_collides_as_top_and_legs_with_its_knee_space_free():
     # The middle of the knee space is empty.
     centre = np.array([0.0, 0.0, h / 3])
     assert not any(np.all(np.abs(centre - p.centre) <= np.divide(p.size, 2)) for p in pieces)
+
+
+def _covered(pieces, point, slack=1e-9) -> bool:
+    return any(np.all(np.abs(np.subtract(point, p.centre)) <= np.divide(p.size, 2) + slack)
+               for p in pieces)
+
+
+def test_a_kitchen_island_leaves_knee_space_and_a_sink_its_worktop_free_beside_the_tap():
+    for v in catalog.variants('kitchen island'):
+        pieces = model_pieces(v)
+        w, d, h = v.size
+        # under the front overhang, where a bar stool's knees go, nothing collides
+        assert not _covered(pieces, (d / 2 - 0.05, 0.0, h / 2)), v.model_id
+        assert _covered(pieces, (d / 2 - 0.05, 0.0, h - 0.01)), v.model_id   # the worktop
+    for v in catalog.variants('kitchen sink'):
+        pieces = model_pieces(v)
+        w, d, h = v.size
+        assert 2 <= len(pieces) <= 8
+        # a cup can stand on the worktop at the front corner; the tap is a piece of its own
+        assert not _covered(pieces, (d / 2 - 0.05, w / 2 - 0.05, 0.95)), v.model_id
+        tap = [p for p in build_parts(v) if p.name == 'tap'][0]
+        assert _covered(pieces, (*tap.centre[:2], h - 0.05)), v.model_id
 
 
 def test_a_chair_keeps_its_seat_and_the_space_under_it():

@@ -199,7 +199,7 @@ def test_every_category_stands_alone_in_both_engines(tmp_path):
     from scene_synth_ros import catalog
     from scene_synth_ros.categories import CATEGORIES
     from scene_synth_ros.scene import Room, Scene
-    cells = 8
+    cells = math.ceil(math.sqrt(len(CATEGORIES)))          # a square of cells holds them all
     room = Room('living', ((0, 0), (3.0 * cells, 0), (3.0 * cells, 3.0 * cells),
                            (0, 3.0 * cells)))
     objects = [PlacedObject(f'o{k}', c, v.model_id, (1.5 + 3 * (k % cells), 1.5 + 3 * (k // cells),

@@ -81,6 +81,21 @@ def test_rooms_in_lockstep_are_the_rooms_made_alone_but_for_the_last_digits(synt
     assert [g.scene.room.room_type for g in grouped] == [r.room_type for r in rooms]
 
 
+def test_rooms_of_several_sizes_in_lockstep_are_batched_by_image_size(synth):
+    # Bedrooms of the 6 m square (64 px) and larger ones (96 and 128 px) in one group: the
+    # category and location calls are batched by image size, so each room is the one made
+    # alone but for the last digits.
+    sizes = [(4.0, 3.5), (7.5, 3.8), (5.0, 4.0), (10.0, 4.0), (7.0, 5.0), (4.5, 4.5)]
+    rooms = [Room('bedroom', ((0, 0), (w, 0), (w, d), (0, d)), 2.6) for w, d in sizes]
+    alone = [synth.generate(r, seed=i) for i, r in enumerate(rooms)]
+    grouped = lockstep.run([lambda r=r, i=i: synth.generate(r, seed=i)
+                            for i, r in enumerate(rooms)])
+    same = sum(objects(a.scene) == objects(g.scene) for a, g in zip(alone, grouped, strict=True))
+    assert same >= 5, f'{same} of 6 rooms the same'
+    for g in grouped:
+        assert check_scene(g.scene).ok and g.robot.kept and g.scene.objects
+
+
 def test_rooms_in_lockstep_are_equal_in_distribution_to_rooms_made_alone(synth):
     # Other seeds on each side, so that the rooms are independent draws: the mean objects
     # per room and the share of each category agree within what 48 rooms a side allow.

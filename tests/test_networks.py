@@ -554,3 +554,43 @@ def test_bundle_round_trip_and_errors(tiny_weights, tmp_path):
     torch.save({'format': 1, 'room_type': 'bathroom', 'config': '{}'}, other)
     with pytest.raises(BundleError, match='other.pt: weights do not match'):
         load_bundle(other)
+
+
+def test_rooms_larger_than_their_square_train_and_answer_at_the_same_pixel_size(rooms):
+    # A 7.5 m bedroom (larger than the 6 m square) is seen at 96 px, like synthesis sees it;
+    # in a batch with a room of the square it is padded to, the smaller one in the middle.
+    small = rooms[0]
+    wide = Scene(replace(small.room, floor=((0, 0), (7.5, 0), (7.5, 3.8), (0, 3.8)),
+                         doors=(), windows=()), [])
+    big = Scene(wide.room, [replace(o, position=(o.position[0] + 0.5, o.position[1],
+                                                 o.position[2]))
+                            for o in small.objects
+                            if 0.2 < o.position[0] + 0.5 < 7.3 and o.position[1] < 3.6])
+    assert big.objects
+    cfg = PipelineConfig.from_yaml(config_dir() / 'compact.yaml')
+    nets = build_networks('bedroom', cfg.model, seed=0)
+    src = ExampleSource('bedroom', [small, big], 64, 64, augment=False,
+                        multiple=nets['location'].multiple)
+    frame = Frame.for_room(big.room, 64, multiple=src.multiple)
+    assert frame.resolution == 96
+    target, _ = src.location_target(frame, big.objects)
+    assert target.shape == (96, 96)
+    for o in big.objects:
+        i, j = frame.world_to_pixel(o.position[:2])
+        assert target[i, j] == 1 + src.index[o.category]
+    sizes = set()
+    for seed in range(6):
+        batch = src.batch('location', seed, 4)
+        assert batch['image'].shape[-2:] == batch['target'].shape[-2:]
+        sizes.add(batch['image'].shape[-1])
+        # every image holds a whole room (the floor channel), never cut by the padding
+        assert all(img[0].sum() > 100 for img in batch['image'])
+    assert 96 in sizes
+    image = torch.from_numpy(src.location_example(np.random.default_rng(1))[0])[None]
+    nets['location'].eval()
+    nets['category'].eval()
+    with torch.no_grad():
+        for x in (batch['image'], image):
+            assert nets['location'](x).shape[-2:] == x.shape[-2:]
+            assert nets['category'](x, torch.zeros(len(x), src.num_categories)).shape == \
+                (len(x), src.num_categories + 1)

@@ -316,17 +316,43 @@ def test_doors_and_windows_land_on_the_wall():
     assert img[DOOR].sum() < img[WINDOW].sum()
 
 
-def test_room_exceeding_cap_raises():
-    big = Room('bedroom', ((0, 0), (6.5, 0), (6.5, 3), (0, 3)))
-    with pytest.raises(RoomDoesNotFit, match='6.5 m x 3 m along its walls, which does not '
-                                             'fit the 6 m x 6 m square a bedroom may cover'):
-        TopDownRenderer().render(Scene(big, []))
-    with pytest.raises(RoomDoesNotFit):
-        Frame.for_room(Room('bathroom', ((0, 0), (3, 0), (3, 5.2), (0, 5.2))), 64)
+def test_room_larger_than_its_square_is_seen_at_the_same_pixel_size():
+    big = Room('bedroom', ((0, 0), (7.5, 0), (7.5, 3.8), (0, 3.8)))
+    m = ROOM_SIZE_CAP['bedroom'] / 64
+    frame = Frame.for_room(big, 64)
+    assert frame.resolution == 80 and frame.metres_per_pixel == pytest.approx(m)
+    grown = Frame.for_room(big, 64, multiple=32)
+    assert grown.resolution == 96 and grown.metres_per_pixel == pytest.approx(m)
+    assert grown.centre == pytest.approx((3.75, 1.9))
+    img = TopDownRenderer(96).render(Scene(big, []), grown)
+    # The whole floor is drawn, at the type's pixel size, with its wall ring closed.
+    assert img[ROOM].sum() == pytest.approx(7.5 * 3.8 / m ** 2, rel=0.03)
+    rows, cols = np.nonzero(img[WALL])
+    assert rows.min() > 0 and cols.min() > 0 and rows.max() < 95 and cols.max() < 95
+    # A room that fits its square is the middle of its image in a grown frame: the pixels
+    # sit at the same places of the world, so the larger image holds the smaller one.
+    fits = furnished_l_scene()
+    small = Frame.for_room(fits.room, 64)
+    wide = Frame(small.centre, small.yaw, 96 * small.metres_per_pixel, 96)
+    a = TopDownRenderer(64).render(fits, small)
+    b = TopDownRenderer(96).render(fits, wide)
+    assert a[2:].any()
+    assert np.array_equal(b[:, 16:80, 16:80], a)
+    assert not b[:, :16].any() and not b[:, 80:].any()
+
+
+def test_room_longer_than_a_room_may_be_raises():
+    huge = Room('bedroom', ((0, 0), (16.5, 0), (16.5, 3), (0, 3)))
+    with pytest.raises(RoomDoesNotFit, match='16.5 m x 3 m along its walls, longer than the '
+                                             '16 m a bedroom may be along its longer side'):
+        TopDownRenderer().render(Scene(huge, []))
     exact = Room('bedroom', ((0, 0), (6.0, 0), (6.0, 6.0), (0, 6.0)))
     assert Frame.for_room(exact, 64).centre == (3.0, 3.0)
-    # A local view is not limited by the cap.
-    assert TopDownRenderer().render_local(Scene(big, []), (1.0, 1.0), 0.0).shape[1:] == (64, 64)
+    assert Frame.for_room(exact, 64).resolution == 64
+    longest = Room('bathroom', ((0, 0), (16.0, 0), (16.0, 2.0), (0, 2.0)))
+    assert Frame.for_room(longest, 64, multiple=32).resolution == 224
+    # A local view is not limited by the room's size.
+    assert TopDownRenderer().render_local(Scene(huge, []), (1.0, 1.0), 0.0).shape[1:] == (64, 64)
 
 
 def test_unknown_category_raises():
@@ -423,6 +449,8 @@ def test_room_fits_iff_it_fits_in_its_own_axes(degrees):
     angle = math.radians(degrees)
     fits = Scene(Room('bedroom', ((0, 0), (5.5, 0), (5.5, 5.0), (0, 5.0)))).moved(angle)
     assert Frame.for_room(fits.room, 64).extent == ROOM_SIZE_CAP['bedroom']
-    too_long = Scene(Room('bedroom', ((0, 0), (6.2, 0), (6.2, 2.0), (0, 2.0)))).moved(angle)
-    with pytest.raises(RoomDoesNotFit, match='6.2 m x 2 m along its walls'):
+    grown = Scene(Room('bedroom', ((0, 0), (6.2, 0), (6.2, 2.0), (0, 2.0)))).moved(angle)
+    assert Frame.for_room(grown.room, 64, multiple=32).resolution == 96
+    too_long = Scene(Room('bedroom', ((0, 0), (16.2, 0), (16.2, 2.0), (0, 2.0)))).moved(angle)
+    with pytest.raises(RoomDoesNotFit, match='16.2 m x 2 m along its walls'):
         Frame.for_room(too_long.room, 64)

@@ -215,8 +215,8 @@ BAD_LAYOUTS = [
      'floor[2]', ['repeats the previous vertex']),
     ('tiny floor', layout(floor=[[0, 0], [1, 0], [1, 1], [0, 1]], doors=[], windows=[]),
      'floor', ['1 m²', 'minimum']),
-    ('too large for the cap', layout(floor=[[0, 0], [7.5, 0], [7.5, 3], [0, 3]]), 'floor',
-     ['7.5 m x 3 m', '6 m x 6 m', 'bedroom']),
+    ('too long', layout(floor=[[0, 0], [16.5, 0], [16.5, 3], [0, 3]]), 'floor',
+     ['16.5 m x 3 m', 'longer than the 16 m', 'bedroom']),
     ('wall too low', layout(wall_height=1.2), 'wall_height', ['at least 1.8 m', '1.2']),
     ('wall too high', layout(wall_height=7), 'wall_height', ['at most 6 m']),
     ('unknown room type', layout(room_type='kitchen'), 'room_type',
@@ -439,14 +439,14 @@ def test_dump_accepts_numpy_values():
 
 @pytest.mark.parametrize('degrees', [0, 17, 30, 45, 90])
 @pytest.mark.parametrize('floor, fits', [
-    ([[0, 0], [5.5, 0], [5.5, 5.0], [0, 5.0]], True),
-    ([[0, 0], [5.8, 0], [5.8, 2.5], [2.8, 2.5], [2.8, 4.5], [0, 4.5]], True),   # an L
-    ([[0, 0], [6.3, 0], [6.3, 3.0], [0, 3.0]], False),
-    ([[0, 0], [6.2, 0], [6.2, 2.5], [2.8, 2.5], [2.8, 4.5], [0, 4.5]], False),
-], ids=['5.5x5', 'L-5.8x4.5', '6.3x3', 'L-6.2x4.5'])
+    ([[0, 0], [7.5, 0], [7.5, 3.8], [0, 3.8]], True),
+    ([[0, 0], [15.8, 0], [15.8, 2.5], [2.8, 2.5], [2.8, 4.5], [0, 4.5]], True),   # an L
+    ([[0, 0], [16.3, 0], [16.3, 3.0], [0, 3.0]], False),
+    ([[0, 0], [16.2, 0], [16.2, 2.5], [2.8, 2.5], [2.8, 4.5], [0, 4.5]], False),
+], ids=['7.5x3.8', 'L-15.8x4.5', '16.3x3', 'L-16.2x4.5'])
 def test_a_room_is_accepted_iff_it_fits_in_its_own_axes(floor, fits, degrees):
-    """The 6 m square of a bedroom is measured along the room's walls, whatever way the room
-    is turned (the networks see it in its own axes)."""
+    """The 16 m bound on a room's longer side is measured along the room's walls, whatever
+    way the room is turned (the networks see it in its own axes)."""
     a = math.radians(degrees)
     turned = [[x * math.cos(a) - y * math.sin(a) + 10, x * math.sin(a) + y * math.cos(a) - 3]
               for x, y in floor]
@@ -454,9 +454,9 @@ def test_a_room_is_accepted_iff_it_fits_in_its_own_axes(floor, fits, degrees):
     if fits:
         assert len(schema.parse_room_layout(layout).room.floor) == len(floor)
     else:
-        with pytest.raises(SceneValidationError, match=r'^floor is 6\.\d+ m x \d(\.\d+)? m along '
-                                                        r'its walls, which does not fit the 6 m x '
-                                                        r'6 m square a bedroom may cover$'):
+        with pytest.raises(SceneValidationError, match=r'^floor is 16\.\d+ m x \d(\.\d+)? m '
+                                                        r'along its walls, longer than the 16 m '
+                                                        r'a bedroom may be along its longer side$'):
             schema.parse_room_layout(layout)
 
 

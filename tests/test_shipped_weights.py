@@ -14,7 +14,7 @@ import pytest
 import torch
 import yaml
 
-from scene_synth_ros.categories import ROOM_TYPES
+from scene_synth_ros.categories import HOME_ROOM_TYPES, PAPER_ROOM_TYPES, ROOM_TYPES
 from scene_synth_ros.networks import NETWORKS
 from scene_synth_ros.networks.config import PipelineConfig, TrainConfig
 from scene_synth_ros.paths import config_dir, weights_dir
@@ -42,7 +42,7 @@ def shipped() -> PipelineConfig:
 
 def test_shipped_config_states_what_the_chain_trained():
     cfg = shipped()
-    for rt in ROOM_TYPES:
+    for rt in PAPER_ROOM_TYPES:
         for module in NETWORKS:
             name = CHAIN_EXCEPTIONS.get((rt, module), CHAIN[module])
             chain = PipelineConfig.from_yaml(config_dir() / f'{name}.yaml')
@@ -52,6 +52,12 @@ def test_shipped_config_states_what_the_chain_trained():
     # The exception is the office's alone.
     assert cfg.module_train('category', 'office').category.steps == 4000
     assert cfg.module_train('category', 'living').category.steps == 12000
+    # The rooms of a home: compact.yaml's schedules on the 5,000 rooms.
+    compact = PipelineConfig.from_yaml(config_dir() / 'compact.yaml').train
+    for rt in HOME_ROOM_TYPES:
+        for module in NETWORKS:
+            t = cfg.module_train(module, rt)
+            assert getattr(t, module).steps == getattr(compact, module).steps, (rt, module)
 
 
 def test_shipped_bundles_record_the_settings_of_the_config():

@@ -371,8 +371,8 @@ def test_errors_say_what_is_wrong(tmp_path, tiny_weights):
     s = Synthesizer(tmp_path)
     with pytest.raises(BundleError, match='bedroom.pt: no such weights file'):
         s.generate(empty_room('bedroom', 0))
-    huge = Room('bathroom', [(0, 0), (6, 0), (6, 3), (0, 3)])
-    with pytest.raises(RoomDoesNotFit, match='does not fit the 5 m x 5 m square'):
+    huge = Room('bathroom', [(0, 0), (17, 0), (17, 3), (0, 3)])
+    with pytest.raises(RoomDoesNotFit, match='longer than the 16 m a bathroom may be along'):
         Synthesizer(tiny_weights).generate(huge)
     odd = Scene(empty_room('bathroom', 0), [box('double bed', 1.0, 1.0, 1.6, 2.0, oid='bed')])
     with pytest.raises(SynthesisError, match="'bed' is a double bed, which is not one of the "

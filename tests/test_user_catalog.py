@@ -227,7 +227,7 @@ def test_broken_models_are_report_lines(tmp_path):
         {'file': 'flat.stl', 'category': 'straight chair'},
         {'file': 'in_cm.stl', 'category': 'straight chair'},
         {'file': 'yup.stl', 'category': 'straight chair'},
-        {'file': 'good.stl', 'category': 'dining chair'},
+        {'file': 'good.stl', 'category': 'rocking chair'},
         {'file': 'good.stl', 'category': 'straight chair', 'up': '+q'},
         {'file': 'good.stl', 'category': 'straight chair', 'up': 'z', 'front': '-z'},
         {'file': 'good.stl', 'category': 'straight chair', 'units': 'furlong'},
@@ -242,7 +242,7 @@ def test_broken_models_are_report_lines(tmp_path):
     report = build_catalog(tmp_path)
     assert [m.model_id for m in report.models] == ['good']
     expected = [
-        "models[8] 'good.stl': category 'dining chair' is not a category of ours",
+        "models[8] 'good.stl': category 'rocking chair' is not a category of ours",
         "models[9] 'good.stl': up '+q' is not an axis",
         "models[10] 'good.stl': its front and up are the same axis",
         "models[11] 'good.stl': units 'furlong' are not one of",

@@ -3,6 +3,7 @@ JSON, one room per scene, with the import report and the data-set description.""
 from __future__ import annotations
 
 from ..datasets.config import FORMATS, ImportConfig
+from ..thresholds import MAX_ROOM_SIDE
 
 TABLE_HELP = {
     '3dfront': "3D-FUTURE's category mapping (CSV) or model_info.json",
@@ -41,8 +42,8 @@ def add_parser(sub) -> None:
                    default=d.object_count, help='rooms keeping fewer or more objects are '
                    f'dropped (default {d.object_count[0]} {d.object_count[1]})')
     c.add_argument('--room-size', action='append', default=[], metavar='TYPE=METRES',
-                   help='side of the square a room of TYPE must fit in, repeatable (default: '
-                   'bedroom 6, living 8, office 7, bathroom 5, other types unlimited)')
+                   help='longest side a room of TYPE may have, repeatable (default: '
+                   f'{MAX_ROOM_SIDE:g} for the package\'s room types, other types unlimited)')
     c.add_argument('--no-room-size', action='store_true',
                    help='keep rooms of any size')
     c.add_argument('--floor-tolerance', type=float, default=d.floor_tolerance,

@@ -25,9 +25,11 @@ from ..rules.access import STORAGE, USED_FRONT
 from ..scene import PlacedObject
 from ..thresholds import (
     BED_CLEARANCE,
+    DINING_CLEARANCE,
     ENTRY_STRETCH,
     FIXTURE_CLEARANCE,
     HEAD_END,
+    KITCHEN_AISLE,
     STORAGE_CLEARANCE,
     WALL_CLEARANCE,
 )
@@ -41,6 +43,9 @@ NIGHTSTAND = (CATEGORIES['stand'].width[1] + 0.06, CATEGORIES['stand'].depth[1])
 # the seat alone, as deep as a chair pulled up to it (design guides ask 0.75-0.9 m).
 SEATED_FRONT = members('worktop')
 SEAT_SPOT = 0.8
+# A kitchen's units and appliances keep the work aisle before them.
+KITCHEN_FRONTS = members('counter run') + ('fridge',)
+DINING_SEATS = members('dining seat')
 
 
 @dataclass(frozen=True)
@@ -97,9 +102,40 @@ def _end(obj: PlacedObject, side: int, depth: float) -> Polygon:
     return _box(obj, -d, d, *((w, w + depth) if side > 0 else (-w - depth, -w)))
 
 
+def _around(obj: PlacedObject, depth: float, open_sides: str = 'xXyY') -> Polygon:
+    """The box ``depth`` wider than the piece on each of ``open_sides`` ('X' front, 'x'
+    back, 'Y' left end, 'y' right end), flush with it on the others."""
+    d, w = obj.depth / 2, obj.width / 2
+    return _box(obj, -d - depth * ('x' in open_sides), d + depth * ('X' in open_sides),
+                -w - depth * ('y' in open_sides), w + depth * ('Y' in open_sides))
+
+
+def _home_zones(obj: PlacedObject) -> list[list[Zone]] | None:
+    """The needs of the pieces of the rooms of a home (None for the paper's): the work
+    aisle before a kitchen's units (those of units at a corner may overlap); the seats' floor
+    around a
+    dining table, on every side or on all but one (a table against a wall); around an island
+    the aisle on every side, its stools' at its front."""
+    cat, own = obj.category, obj.id
+    if cat in KITCHEN_FRONTS:
+        return [[Zone(_front(obj, KITCHEN_AISLE + MARGIN), own)]]
+    if cat == 'dining table':
+        return [[Zone(_around(obj, DINING_CLEARANCE + MARGIN, sides), own,
+                      allowed=DINING_SEATS)
+                 for sides in ('xXyY', 'XyY', 'xyY', 'xXY', 'xXy')]]
+    if cat == 'kitchen island':
+        return [[Zone(_around(obj, KITCHEN_AISLE + MARGIN), own, allowed=DINING_SEATS)]]
+    if cat == 'sideboard':
+        return [[Zone(_front(obj, STORAGE_CLEARANCE + MARGIN), own)]]
+    return None
+
+
 def zones(obj: PlacedObject) -> list[list[Zone]]:
     """What ``obj`` needs kept clear: needs, each a list of alternatives."""
     cat, own = obj.category, obj.id
+    home = _home_zones(obj)
+    if home is not None:
+        return home
     if cat in SEATED_FRONT:
         return [[Zone(_front(obj, SEAT_SPOT), own, allowed=TABLE_SEATS)]]
     if cat in STORAGE:

@@ -23,8 +23,9 @@ import numpy as np
 from .. import catalog
 from ..catalog import ModelVariant
 from ..categories import CATEGORIES, members, paper_spec
-from ..rules import access, groups
+from ..rules import access, groups, home
 from ..scene import PlacedObject
+from ..thresholds import TRIANGLE_LEG
 from .layout import Layout
 
 # Placement phase of each first-tier category: anchors before what is arranged around them.
@@ -38,7 +39,17 @@ PHASE = {
     'office chair': 3, 'straight chair': 3, 'chair': 3, 'stool': 3, 'bench chair': 3,
     'ottoman': 3, 'sofa chair': 3, 'armchair': 3,
     'floor lamp': 4, 'loudspeaker': 4, 'pedestal fan': 4, 'hanger': 4, 'trash can': 4,
+    # the rooms of a home: the sink fixes the kitchen's run, the rest of the triangle
+    # follows it; the dining table is the dining room's anchor
+    'kitchen sink': 0, 'dining table': 0, 'coat rack': 0,
+    'stove': 0.5, 'fridge': 0.7, 'counter': 1, 'sideboard': 1, 'shoe bench': 1,
+    'console table': 1,
+    'dishwasher': 2, 'kitchen island': 2,
+    'dining chair': 3, 'bar stool': 3,
 }
+
+# A kitchen is planned around its units: its dining table takes the floor they leave.
+ROOM_PHASE = {'kitchen': {'dining table': 2.5}}
 
 # Categories that usually come in pairs (a nightstand each side, a speaker each side).
 PAIRED = {'stand', 'loudspeaker'}
@@ -49,6 +60,8 @@ MAIN_BEDS = members('main bed')
 ONE_PER_PARENT = {'television', 'console', 'laptop', 'table lamp', 'fishbowl', 'fruit bowl'}
 SYMMETRIC = {'plant', 'vase', 'cup', 'glass', 'bottle', 'fruit bowl', 'fishbowl', 'toy'}
 SEATED_BY = members('worktop')
+RUN_UNITS = members('counter run')
+TRIANGLE = members('work triangle')
 
 
 def draw_count(rate: float, rng: np.random.Generator, paired: bool = False) -> int:
@@ -88,8 +101,9 @@ def draw_plan(room_type: str, rng: np.random.Generator,
         if c.name not in skip:
             plan += [c.name] * draw_count(rate[c.name], rng, paired=c.name in PAIRED)
     plan = with_partners(room_type, plan, rate, rng)
+    phase = {**PHASE, **ROOM_PHASE.get(room_type, {})}
     first = sorted((n for n in plan if CATEGORIES[n].tier == 'first'),
-                   key=lambda n: (PHASE.get(n, 1), -spec[n].importance))
+                   key=lambda n: (phase.get(n, 1), -spec[n].importance))
     second = [n for n in plan if CATEGORIES[n].tier == 'second']
     return first + second
 
@@ -113,6 +127,14 @@ def with_partners(room_type: str, plan: list[str], rate: dict[str, float],
 
     if count['coffee table'] and not any(count[c] for c in groups.LOUNGE_SEATS):
         add(groups.LOUNGE_SEATS)
+    # Dining seats come with their table (an island's with the island), as many a table as
+    # the table's rates give: a seat without one is not drawn at all.
+    for seat, surface in (('dining chair', 'dining table'), ('bar stool', 'kitchen island')):
+        if rate.get(seat, 0.0) and rate.get(surface, 0.0):
+            per = rate[seat] / rate[surface]
+            plan = [c for c in plan if c != seat]
+            for _ in range(count[surface]):
+                plan += [seat] * max(1, draw_count(per, rng))
     if room_type == 'bedroom' and count['double bed'] and not count['stand']:
         add(('stand',))
     drop = {'bidet'} if not count['toilet'] else set()
@@ -325,6 +347,151 @@ def _rule_sofa(lay, v):
                   lambda: lay.free(v, tries=16))
 
 
+def _rule_kitchen_sink(lay, v):
+    # Under a window where there is one, as kitchens are planned; else on the longest wall.
+    def under_window():
+        for window in lay.rng.permutation(len(lay.room.windows)):
+            w = lay.room.windows[int(window)]
+            wall = min(lay.room.walls, key=lambda wl: wl.distance_to(w.position))
+            off = wall.offset_of(w.position)
+            if not v.width / 2 <= off <= wall.length - v.width / 2:
+                continue
+            xy = wall.point_at(off) + wall.normal * (v.depth / 2 + 0.01)
+            obj = lay.try_place(v, xy, wall.inward_yaw)
+            if obj is not None:
+                return obj
+        return None
+    return _first(under_window, lambda: lay.against_wall(v, 'any'))
+
+
+def _run_units(lay):
+    return lay.first_tier(*RUN_UNITS)
+
+
+def _in_triangle(lay, obj) -> bool:
+    """Whether ``obj`` (a sink, stove or fridge) keeps the work triangle possible: within a
+    leg's reach of those of the three already placed."""
+    return _triangle_spot(lay, obj.category, obj.position[:2])
+
+
+def _triangle_spot(lay, category: str, xy) -> bool:
+    lo, hi = TRIANGLE_LEG
+    others = lay.first_tier(*(c for c in TRIANGLE if c != category))
+    return all(lo <= math.dist(xy, o.position[:2]) <= hi for o in others)
+
+
+def _on_wall_where(lay, v, ok, step: float = 0.1):
+    """Back to a wall where ``ok(xy)`` holds for the centre: the walls scanned in steps."""
+    for wall in lay.walls_by_length(v.width + 0.02):
+        lo, hi = v.width / 2 + 0.005, wall.length - v.width / 2 - 0.005
+        offsets = np.arange(lo, hi + 1e-9, step)
+        lay.rng.shuffle(offsets)
+        for off in offsets:
+            xy = wall.point_at(off) + wall.normal * (v.depth / 2 + 0.005)
+            if ok(xy):
+                obj = lay.try_place(v, xy, wall.inward_yaw)
+                if obj is not None:
+                    return obj
+    return None
+
+
+def _along_run(lay, v, anchors, gap=(0.0, 0.01), keep=None):
+    """Beside one of ``anchors``, backs in one line (the next unit of a run), where ``keep``
+    (a test of the placed piece) holds."""
+    options = lay.first_tier(*anchors)
+    lay.rng.shuffle(options)
+    for anchor in options:
+        for side in lay.rng.permutation([-1, 1]):
+            obj = lay.beside(anchor, v, int(side), lay.rng.uniform(*gap))
+            if obj is None:
+                continue
+            if keep is None or keep(obj):
+                return obj
+            lay.remove(obj)
+    return None
+
+
+def _rule_counter(lay, v):
+    return _first(lambda: _along_run(lay, v, RUN_UNITS),
+                  lambda: lay.against_wall(v, 'corner'), lambda: lay.against_wall(v, 'any'))
+
+
+def _rule_triangle_unit(lay, v):
+    # A stove along the run with a counter between it and the sink where one stands; a
+    # fridge at a run's end; both within the triangle's legs of what is placed.
+    def kept(obj):
+        return _in_triangle(lay, obj)
+
+    def on_wall():
+        return _on_wall_where(lay, v, lambda xy: _triangle_spot(lay, v.category, xy))
+    if v.category == 'stove':
+        # a counter's width from the sink (its landing), the counter to come between
+        return _first(lambda: _along_run(lay, v, ('kitchen sink',), (0.3, 0.9), kept),
+                      lambda: _along_run(lay, v, ('counter',), (0.0, 0.02), kept), on_wall)
+    return _first(lambda: _along_run(lay, v, RUN_UNITS, (0.3, 0.9), kept), on_wall)
+
+
+def _rule_dishwasher(lay, v):
+    return _first(lambda: _along_run(lay, v, ('kitchen sink',)),
+                  lambda: _along_run(lay, v, ('counter',)))
+
+
+def _rule_island(lay, v):
+    return lay.free(v, tries=24)
+
+
+def _rule_dining_table(lay, v):
+    # In the middle of the open floor (a dining room's, or what a kitchen's units leave),
+    # its length along that floor's.
+    for part in lay.open_floor(min(v.width, v.depth) / 2)[:2]:
+        x0, y0, x1, y1 = part.bounds
+        along = math.pi / 2 if (x1 - x0) > (y1 - y0) else 0.0   # width (local y) along it
+        c = part.centroid if part.contains(part.centroid) else part.representative_point()
+        for yaw in (along, along + math.pi / 2):
+            obj = lay.try_place(v, (c.x, c.y), yaw)
+            if obj is not None:
+                return obj
+    return lay.free(v, tries=24)
+
+
+def _seat_slots(table, seat, gap):
+    """Where seats go around ``table`` in its frame: along both long sides, then the ends."""
+    d, w = table.depth / 2, table.width / 2
+    x = d + gap + seat.depth / 2
+    n = max(1, int(table.width // 0.6))
+    ys = [(k + 0.5) * table.width / n - w for k in range(n)]
+    slots = [((x, y), math.pi) for y in ys] + [((-x, y), 0.0) for y in ys]
+    if table.depth >= 0.7:
+        e = w + gap + seat.depth / 2
+        slots += [((0.0, e), -math.pi / 2), ((0.0, -e), math.pi / 2)]
+    return slots
+
+
+def _rule_dining_seat(lay, v):
+    surfaces = ('kitchen island',) if v.category == 'bar stool' else ('dining table',)
+    for table in lay.first_tier(*surfaces):
+        slots = _seat_slots(table, v, lay.rng.uniform(0.02, 0.1))
+        if v.category == 'bar stool':      # at the island's front overhang only
+            slots = [s for s in slots if s[1] == math.pi]
+        for (x, y), yaw in slots:
+            obj = lay.relative(table, v, (x, y), yaw)
+            if obj is not None:
+                return obj
+    return None
+
+
+def _hall_piece(rule):
+    # In a hallway a piece stays only where the walking path stays 0.9 m wide.
+    def placed(lay, v):
+        obj = rule(lay, v)
+        if obj is not None and lay.room.room_type == 'hallway' and \
+                not home.hallway_path(lay.scene)[0] and len(lay.room.doors) > 1:
+            lay.remove(obj)
+            return None
+        return obj
+    return placed
+
+
 RULES: dict[str, Rule] = {
     'double bed': _rule_main_bed, 'single bed': _rule_corner_bed,
     'bunker bed': _rule_corner_bed, 'baby bed': _rule_corner_bed, 'daybed': _rule_wall,
@@ -337,6 +504,13 @@ RULES: dict[str, Rule] = {
     'pedestal fan': _rule_corner_item, 'hanger': _rule_corner_item,
     'bidet': _rule_bidet, 'trash can': _rule_trash_can, 'bathtub': _rule_bath,
     'shower': _rule_shower, 'shelving': _rule_wall_corner,
+    'kitchen sink': _rule_kitchen_sink, 'counter': _rule_counter,
+    'stove': _rule_triangle_unit, 'fridge': _rule_triangle_unit,
+    'dishwasher': _rule_dishwasher, 'kitchen island': _rule_island,
+    'dining table': _rule_dining_table, 'dining chair': _rule_dining_seat,
+    'bar stool': _rule_dining_seat, 'sideboard': _rule_wall,
+    'coat rack': _hall_piece(_rule_wall), 'shoe bench': _hall_piece(_rule_wall),
+    'console table': _hall_piece(_rule_wall),
 }
 
 
@@ -396,6 +570,8 @@ def _belongs(lay: Layout, obj: PlacedObject) -> bool:
         return _has_seating(lay, obj)
     if obj.category == 'bidet':
         return any(groups.beside_toilet(obj, t) for t in lay.first_tier('toilet'))
+    if obj.category in home.DINING_SEATS:
+        return any(groups.seated_at(obj, t) for t in lay.first_tier(*home.DINING_SURFACES))
     return True
 
 

@@ -15,12 +15,14 @@ from ..categories import CATEGORIES, ROOM_TYPES, resolve_room_type
 from ..geometry import check_scene
 from ..parallel import process_pool
 from ..scene import Room, Scene
+from ..thresholds import DINING_CLEARANCE
 from .furnish import draw_plan, pick_variant, place_first_tier, place_second_tier, tidy
 from .layout import Layout
 from .shell import sample_shell
 
 CALIBRATION_FILE = Path(__file__).with_name('calibration.json')
 CIRCULATION = 2.3        # floor area per m^2 of furniture footprint a room is given, at least
+SEATED_AROUND = ('dining table', 'kitchen island')
 MAX_ATTEMPTS = 8
 # The design rules every corpus room keeps (``rules``), but two that the
 # paper's table itself bounds: it has fewer seats than desks and dressing tables in bedrooms,
@@ -54,8 +56,8 @@ def room_rng(room_type: str, seed: int, index: int) -> np.random.SeedSequence:
 
 
 def corpus_room_type(name: str) -> str:
-    """The paper's room type ``name`` names (``UnknownRoomType`` for any other): the corpus
-    furnishes the paper's four, with the paper's categories (``categories.PAPER``), whatever
+    """The room type ``name`` names (``UnknownRoomType`` for any other): the corpus furnishes
+    the package's room types with the package's categories (``categories.PAPER``), whatever
     vocabulary the weights in use have."""
     return resolve_room_type(name)
 
@@ -67,7 +69,11 @@ def _drawn(room_type: str, rng: np.random.Generator, calibration: dict[str, floa
     chosen = [pick_variant(c, rng) for c in plan]
     footprint = sum(v.width * v.depth for c, v in zip(plan, chosen, strict=True)
                     if CATEGORIES[c].tier == 'first')
-    return plan, chosen, sample_shell(room_type, rng, min_area=CIRCULATION * footprint + 2.0)
+    # A table people sit around needs its seats' floor on top (an eat-in kitchen is large).
+    seated = sum((v.width + 2 * DINING_CLEARANCE) * (v.depth + 2 * DINING_CLEARANCE)
+                 for c, v in zip(plan, chosen, strict=True) if c in SEATED_AROUND)
+    return plan, chosen, sample_shell(room_type, rng,
+                                      min_area=CIRCULATION * footprint + seated + 2.0)
 
 
 def generate_room(room_type: str, seed: int = 0, index: int = 0,

@@ -175,6 +175,17 @@ class Layout:
         return None
 
     # ---- ways to place a first-tier object -------------------------------------------
+    def open_floor(self, margin: float = 0.0) -> list:
+        """The floor no piece, door zone or reserved floor takes, shrunk by ``margin``: its
+        pieces, largest first (where a free-standing table goes)."""
+        taken = [p for _, p in self._first] + [z.polygon for z in self._zones] \
+            + list(self._door_zones)
+        free = self.room.polygon.difference(shapely.union_all(taken)) if taken \
+            else self.room.polygon
+        free = free.buffer(-margin) if margin else free
+        parts = list(getattr(free, 'geoms', [free]))
+        return sorted((p for p in parts if not p.is_empty), key=lambda p: -p.area)
+
     def walls_by_length(self, min_length: float) -> list[Wall]:
         walls = [w for w in self.room.walls if w.length >= min_length]
         if not walls:

@@ -24,6 +24,7 @@ class ShellConfig:
     wall_height: tuple[float, float] = (2.5, 2.9)
     l_shape_probability: float = 0.2
     min_side: float = 1.9
+    doors: tuple[int, int] = (1, 2)      # fewest and most doors, around the table's mean
 
 
 SHELLS = {
@@ -35,6 +36,15 @@ SHELLS = {
                           (0.8, 1.0)),
     'bathroom': ShellConfig((3.6, 11.0), (1.0, 1.8), (0.7, 0.85), (0.5, 1.0), (0.6, 1.0),
                             (1.1, 1.4), min_side=1.6),
+    # A galley kitchen is at least 2.4 m wide (two 0.6 m runs and a 1.2 m aisle); a one-wall
+    # kitchen 1.9 m. Windows sit above the worktop (sill 1.0-1.1 m).
+    'kitchen': ShellConfig((7.0, 26.0), (1.0, 2.0), (0.8, 0.9), (0.6, 1.6), (0.9, 1.3),
+                           (1.0, 1.1)),
+    'dining': ShellConfig((9.0, 22.0), (1.0, 1.6), (0.8, 1.2), (0.9, 2.0), (1.2, 1.6),
+                          (0.6, 0.9)),
+    # Long and narrow, joining the rooms of a home: its doors are on its long walls.
+    'hallway': ShellConfig((3.0, 13.0), (2.0, 5.0), (0.8, 0.9), (0.6, 1.0), (0.8, 1.2),
+                           (0.9, 1.1), l_shape_probability=0.15, min_side=1.1, doors=(2, 5)),
 }
 
 OPENING_GAP = 0.3       # clear wall between two openings
@@ -125,7 +135,7 @@ def sample_shell(room_type: str, rng: np.random.Generator, min_area: float = 0.0
     floor = floor_outline(room_type, area, rng, cfg)
     shell = Room(room_type, floor, round(rng.uniform(*cfg.wall_height), 2))
     taken: list[tuple[int, float, float]] = []
-    doors = _place_openings(shell, 'door', count_from_mean(spec.doors_per_room, 1, 2, rng),
+    doors = _place_openings(shell, 'door', count_from_mean(spec.doors_per_room, *cfg.doors, rng),
                             cfg.door_width, (2.0, 2.1), (0.0, 0.0), taken, rng)
     # Windows go on the outside walls: one wall, or two for rooms with many windows.
     n_windows = window_count(spec.windows_per_room, rng)

@@ -120,9 +120,8 @@ def _room(raw: RawRoom, room_type: str, config: ImportConfig, report: ImportRepo
         span = room_span(room)
         if max(span) > side + 1e-6:
             report.add('room', 'room too large', at,
-                       f'it is {max(span):.2f} m x {min(span):.2f} m along its walls, which '
-                       f'does not fit the {side:g} m square of the room-size filter for '
-                       f'{room_type}')
+                       f'it is {max(span):.2f} m x {min(span):.2f} m along its walls, '
+                       f'longer than the {side:g} m of the room-size filter for {room_type}')
             return None
     return room
 

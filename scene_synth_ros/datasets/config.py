@@ -6,9 +6,10 @@ paper's SUNCG filtering), each one an option:
 * ``scale_range``: an object whose scale along any axis is outside it is dropped (scales
   of 0.01 or 100 are data-entry mistakes, not furniture);
 * ``object_count``: a room with fewer or more kept objects is dropped;
-* ``room_size``: per room type, the side of the square the room must fit in its own axes
-  (the axes of ``render.room_axis_yaw``, the question the networks' frame asks); by default
-  ``categories.ROOM_SIZE_CAP`` for the paper's four types and no limit for others;
+* ``room_size``: per room type, the longest side the room may have in its own axes (the
+  axes of ``render.room_axis_yaw``, the question the networks' frame asks); by default
+  ``thresholds.MAX_ROOM_SIDE``, the longest room the package furnishes, for the package's
+  room types and no limit for others;
 * objects whose footprint centre lies more than ``floor_tolerance`` outside the floor are
   dropped.
 """
@@ -18,9 +19,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Mapping
 
-from ..categories import ROOM_SIZE_CAP
+from ..categories import ROOM_TYPES
 from ..errors import DatasetError, quoted
 from ..limits import MAX_OBJECTS, LimitExceeded, YamlError, loads_yaml
+from ..thresholds import MAX_ROOM_SIDE
 
 FORMATS = ('3dfront', 'suncg', 'procthor')
 ROOM_TYPES_FILE = Path(__file__).with_name('room_types.yaml')
@@ -32,7 +34,7 @@ class ImportConfig:
 
     scale_range: tuple[float, float] = (0.2, 5.0)
     object_count: tuple[int, int] = (1, MAX_OBJECTS)
-    # None: ROOM_SIZE_CAP for the paper's room types, no limit for the others.
+    # None: MAX_ROOM_SIDE for the package's room types, no limit for the others.
     room_size: Mapping[str, float] | None = None
     floor_tolerance: float = 0.01        # m an object's centre may lie outside the floor
     support_tolerance: float = 0.1       # m between a parent's top and a child's bottom
@@ -57,15 +59,18 @@ class ImportConfig:
                                    f'got {side}')
 
     def size_limit(self, room_type: str) -> float | None:
-        """The side of the square a room of this type must fit in, or None."""
+        """The longest side a room of this type may have, or None."""
         if self.room_size is not None:
             return self.room_size.get(room_type)
-        return ROOM_SIZE_CAP.get(room_type)
+        return _DEFAULT_ROOM_SIZE.get(room_type)
+
+
+_DEFAULT_ROOM_SIZE = dict.fromkeys(ROOM_TYPES, MAX_ROOM_SIDE)
 
 
 def parse_room_size(items: list[str]) -> dict[str, float]:
     """``TYPE=METRES`` items of ``--room-size`` as a mapping (the defaults where not given)."""
-    out: dict[str, float] = dict(ROOM_SIZE_CAP)
+    out: dict[str, float] = dict(_DEFAULT_ROOM_SIZE)
     for item in items:
         name, sep, value = item.partition('=')
         try:

@@ -1,8 +1,8 @@
 """The data-set description (``dataset.yaml``): what a data set's rooms hold, per room type,
 derived from the imported scenes and meant to be read and edited by a person.
 
-Per room type: ``rooms``; ``size_cap`` (the side in metres of the square its rooms fit in:
-the room-size filter's, else the largest room's span rounded up to 0.5 m); doors and
+Per room type: ``rooms``; ``size_cap`` (the side in metres of the square its images cover:
+the largest room's span rounded up to 0.5 m, at most the room-size filter's bound); doors and
 windows per room; and per category:
 
 * ``count`` (objects), ``per_room`` (count / rooms: the paper's frequency), ``rooms_with``;
@@ -168,9 +168,13 @@ class Describer:
     def _type(self, rt: str, t: _TypeTally) -> dict[str, Any]:
         cats = {name: _with_roles(name, _category(seen, t.rooms, t.rooms_with[name]))
                 for name, seen in sorted(t.objects.items(), key=lambda kv: (-len(kv[1]), kv[0]))}
-        cap = self.config.size_limit(rt)
-        if cap is None:
-            cap = math.ceil(t.largest * 2) / 2
+        # The square a type's images cover: its largest room's, not the filter's bound, so
+        # that a data set of small rooms is not seen at the coarse pixels of the largest
+        # room the filter lets through.
+        cap = math.ceil(t.largest * 2) / 2
+        limit = self.config.size_limit(rt)
+        if limit is not None:
+            cap = min(cap, limit)
         return {'rooms': t.rooms, 'size_cap': float(cap),
                 'doors_per_room': round(t.doors / t.rooms, 3),
                 'windows_per_room': round(t.windows / t.rooms, 3),

@@ -26,7 +26,7 @@ from tqdm import tqdm
 
 from ..networks.blocks import ResNetEncoder
 from ..networks.config import EncoderConfig
-from ..networks.examples import rotate_scene
+from ..networks.examples import padded_batch, rotate_scene
 from ..render import Frame, TopDownRenderer
 from ..scene import Scene
 
@@ -76,6 +76,7 @@ class SceneImages:
         self.scenes = list(scenes)
         self.labels = np.asarray(labels, dtype=np.float32)
         self.renderer = TopDownRenderer(resolution, cache_size=64)
+        self._renderers = {resolution: self.renderer}
         self.resolution = resolution
 
     def __len__(self) -> int:
@@ -90,8 +91,14 @@ class SceneImages:
             s = self.scenes[int(i)]
             if turns is not None and turns[k]:
                 s = rotate_scene(s, int(turns[k]))
-            out.append(self.renderer.render(s, Frame.for_room(s.room, self.resolution)))
-        return torch.from_numpy(np.stack(out))
+            # A room larger than its type's square is seen larger, at the same pixel size,
+            # as the synthesizer sees it; the classifier pools globally over any size.
+            frame = Frame.for_room(s.room, self.resolution, multiple=2)
+            if frame.resolution not in self._renderers:
+                self._renderers[frame.resolution] = TopDownRenderer(frame.resolution,
+                                                                    cache_size=64)
+            out.append(self._renderers[frame.resolution].render(s, frame))
+        return padded_batch(out)
 
 
 class TensorImages:

@@ -10,8 +10,10 @@ Collision pieces
     whose empty space matters to a robot or to other furniture, so these collide as a few
     boxes fitted to the model's parts (``OPEN_FRAME``): tables and desks (the knee space
     under the top, where chairs tuck in and a robot's laser sees legs, not a wall), seats on
-    legs (the space under the seat and in front of the back) and things on a pole or a stand
-    (floor lamps, fans, coat stands, whiteboards: a thin pole, not a solid column). Their
+    legs (the space under the seat and in front of the back), things on a pole or a stand
+    (floor lamps, fans, coat stands and racks, whiteboards: a thin pole, not a solid column),
+    a kitchen island (the overhang that bar stools tuck under) and a kitchen sink (a worktop
+    to set things on, and a tap above it). Their
     pieces are the bounding boxes of the mesh's parts, merged greedily while a merge adds
     little empty space (``MergeRule``) and until at most ``max_pieces`` remain: a desk keeps
     its top and legs, a chair its seat, back and legs.
@@ -54,11 +56,20 @@ GRAVITY = 9.81            # m/s^2, along -z
 DENSITIES: dict[str, tuple[float, tuple[str, ...]]] = {
     'beds': (27.0, ('double bed', 'single bed', 'bunker bed', 'baby bed', 'daybed')),
     'case furniture': (60.0, ('wardrobe', 'stand', 'dresser', 'dressing table', 'tv stand',
-                              'shelving', 'shoes cabinet', 'cabinet')),
-    'tables': (40.0, ('desk', 'coffee table')),
-    'seats': (30.0, ('office chair', 'straight chair', 'chair', 'stool', 'bench chair')),
+                              'shelving', 'shoes cabinet', 'cabinet', 'sideboard',
+                              'shoe bench')),
+    'tables': (40.0, ('desk', 'coffee table', 'dining table', 'console table')),
+    'seats': (30.0, ('office chair', 'straight chair', 'chair', 'stool', 'bench chair',
+                     'dining chair', 'bar stool')),
     'upholstered': (40.0, ('sofa', 'sofa chair', 'armchair', 'ottoman')),
-    'stands': (20.0, ('floor lamp', 'pedestal fan', 'hanger', 'whiteboard', 'trash can')),
+    'stands': (20.0, ('floor lamp', 'pedestal fan', 'hanger', 'whiteboard', 'trash can',
+                      'coat rack')),
+    # base cabinets under a worktop: a 0.6 m unit with its top about 40 kg
+    'kitchen units': (110.0, ('counter', 'kitchen sink', 'kitchen island')),
+    # a fridge-freezer 70 to 100 kg, a dishwasher 45 kg, a cooker 50 kg
+    'kitchen appliances': (140.0, ('fridge', 'dishwasher', 'stove')),
+    # a microwave 12 kg, an espresso machine 8 kg, a toaster 2 kg
+    'small appliances': (200.0, ('microwave', 'coffee machine', 'toaster')),
     'appliances': (200.0, ('washer', 'water machine', 'piano', 'fireplace')),
     'ceramics': (150.0, ('toilet', 'bidet', 'sink')),
     'bath and shower': (50.0, ('bathtub', 'shower')),
@@ -69,7 +80,8 @@ DENSITIES: dict[str, tuple[float, tuple[str, ...]]] = {
 }
 DEFAULT_DENSITY = 100.0   # a category of someone else's data set
 OPEN_FRAME = frozenset(DENSITIES['tables'][1] + DENSITIES['seats'][1]
-                       + ('floor lamp', 'pedestal fan', 'hanger', 'whiteboard'))
+                       + ('floor lamp', 'pedestal fan', 'hanger', 'whiteboard', 'coat rack',
+                          'kitchen island', 'kitchen sink'))
 
 
 def density(category: str) -> float:

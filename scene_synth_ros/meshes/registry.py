@@ -21,6 +21,8 @@ from .furniture import (
     bathroom,
     beds,
     case_furniture,
+    dining_and_hall,
+    kitchen,
     lamps_electronics_appliances,
     living_room_and_office,
     seating,
@@ -32,7 +34,7 @@ from .user import user_parts
 
 FURNITURE_MODULES = (beds, case_furniture, tables_and_desks, seating,
                      lamps_electronics_appliances, bathroom, living_room_and_office,
-                     small_things)
+                     small_things, kitchen, dining_and_hall)
 
 
 def _collect(modules: tuple[ModuleType, ...]) -> dict[str, BuildFn]:

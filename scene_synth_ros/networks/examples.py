@@ -90,7 +90,7 @@ class ExampleSource:
 
     def __init__(self, room_type: str, scenes: list[Scene], resolution: int,
                  location_resolution: int, augment: bool = True, target_radius: int = 0,
-                 vocabulary: Vocabulary = PAPER):
+                 vocabulary: Vocabulary = PAPER, multiple: int = 1):
         self.vocabulary = vocabulary
         self.room_type = vocabulary.resolve(room_type)
         self.spec = vocabulary.spec(self.room_type)
@@ -101,9 +101,13 @@ class ExampleSource:
             raise ValueError(f'no furnished {self.room_type} among the {len(scenes)} rooms given')
         self.resolution = resolution
         self.location_resolution = location_resolution
+        # A room larger than its type's square is seen as synthesis sees it: a larger image
+        # whose side is a multiple of this (the location module's ``multiple``).
+        self.multiple = multiple
         self.augment = augment
         self.target_radius = target_radius
         self.renderer = TopDownRenderer(resolution, cache_size=64, vocabulary=vocabulary)
+        self._renderers = {resolution: self.renderer}   # the rooms' frames', by their size
         # A room of N objects is N + 1 states of the sequential model (0 ... N objects
         # placed); drawing rooms in proportion to that draws states as synthesis meets them.
         states = np.array([len(s.objects) + 1 for s in self.scenes], dtype=float)
@@ -146,8 +150,8 @@ class ExampleSource:
                                 vocabulary=self.vocabulary)
         k = int(rng.integers(len(order) + 1))
         part = Scene(scene.room, order[:k])
-        image = self.renderer.render(part, Frame.for_room(scene.room, self.resolution,
-                                                          self.vocabulary))
+        frame = self._frame(scene.room)
+        image = self._renderer(frame).render(part, frame)
         target = self.index[order[k].category] if k < len(order) else self.num_categories
         return image, self.counts(order[:k]), target
 
@@ -157,10 +161,19 @@ class ExampleSource:
                                 vocabulary=self.vocabulary)
         k = int(rng.integers(len(order) + 1))
         kept, removed = order[:k], order[k:]
-        frame = Frame.for_room(scene.room, self.resolution, self.vocabulary)
-        image = self.renderer.render(Scene(scene.room, kept), frame)
+        frame = self._frame(scene.room)
+        image = self._renderer(frame).render(Scene(scene.room, kept), frame)
         target, offset = self.location_target(frame, placeable(removed, kept))
         return image, target, offset
+
+    def _frame(self, room) -> Frame:
+        return Frame.for_room(room, self.resolution, self.vocabulary, self.multiple)
+
+    def _renderer(self, frame: Frame) -> TopDownRenderer:
+        n = frame.resolution
+        if n not in self._renderers:
+            self._renderers[n] = TopDownRenderer(n, cache_size=64, vocabulary=self.vocabulary)
+        return self._renderers[n]
 
     def location_target(self, frame: Frame, objects) -> tuple[np.ndarray, np.ndarray]:
         """Per-pixel labels on the location grid: 0, or 1 + the category of an object whose
@@ -168,7 +181,8 @@ class ExampleSource:
         paper; larger radii give a sparse target more positive pixels to learn from); and
         (2 x L x L) the offset from each labelled pixel's centre to that centroid, in pixels
         (row, col; 0 elsewhere)."""
-        n, r = self.location_resolution, self.target_radius
+        n = frame.resolution * self.location_resolution // self.resolution
+        r = self.target_radius
         out = np.zeros((n, n), dtype=np.int64)
         offset = np.zeros((2, n, n), dtype=np.float32)
         grid = Frame(frame.centre, frame.yaw, frame.extent, n)
@@ -195,7 +209,7 @@ class ExampleSource:
 
     def orientation_example(self, rng):
         part, obj = self._target_object(rng)
-        frame = Frame.for_room(part.room, self.resolution, self.vocabulary)
+        frame = self._frame(part.room)
         image = self.renderer.render(part, Frame.local(self.room_type, obj.position, frame.yaw,
                                                        self.resolution, self.vocabulary))
         theta = wrap_angle(obj.yaw - frame.yaw)
@@ -212,12 +226,13 @@ class ExampleSource:
         rng = np.random.default_rng(seed)
         if module == 'category':
             ex = [self.category_example(rng) for _ in range(size)]
-            return {'image': _stack(e[0] for e in ex), 'counts': _stack(e[1] for e in ex),
+            return {'image': padded_batch(e[0] for e in ex), 'counts': _stack(e[1] for e in ex),
                     'target': torch.tensor([e[2] for e in ex])}
         if module == 'location':
             ex = [self.location_example(rng) for _ in range(size)]
-            return {'image': _stack(e[0] for e in ex), 'target': _stack(e[1] for e in ex),
-                    'offset': _stack(e[2] for e in ex)}
+            return {'image': padded_batch(e[0] for e in ex),
+                    'target': padded_batch(e[1] for e in ex),
+                    'offset': padded_batch(e[2] for e in ex)}
         if module in ('orientation', 'snap'):
             ex = [self.orientation_example(rng) for _ in range(size)]
             theta = torch.tensor([e[2] for e in ex], dtype=torch.float32)
@@ -234,3 +249,19 @@ class ExampleSource:
 
 def _stack(arrays) -> torch.Tensor:
     return torch.from_numpy(np.stack(list(arrays)))
+
+
+def padded_batch(arrays) -> torch.Tensor:
+    """Images (or location targets) of rooms of several sizes as one batch, each in the
+    middle of the largest: the pixels around a smaller room are those of a larger frame
+    about the same centre, all zero (nothing there; "empty" in a target), since frames grow
+    by an even number of pixels."""
+    arrays = list(arrays)
+    n = max(a.shape[-1] for a in arrays)
+    if all(a.shape[-1] == n for a in arrays):
+        return _stack(arrays)
+    out = np.zeros((len(arrays),) + arrays[0].shape[:-2] + (n, n), dtype=arrays[0].dtype)
+    for k, a in enumerate(arrays):
+        p = (n - a.shape[-1]) // 2
+        out[k, ..., p:p + a.shape[-2], p:p + a.shape[-1]] = a
+    return torch.from_numpy(out)

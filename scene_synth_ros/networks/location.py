@@ -25,6 +25,9 @@ class LocationModel(nn.Module):
         super().__init__()
         self.num_categories = num_categories
         self.encoder = ResNetEncoder(in_channels, cfg.location_encoder)
+        # The sides of the images it takes are multiples of this, so that every skip meets
+        # a decoder map of its own size (a room larger than its type's square is seen so).
+        self.multiple = self.encoder.downsampling
         bottleneck = cfg.resolution // self.encoder.downsampling
         if bottleneck < 1 or cfg.location_resolution % bottleneck:
             raise ValueError(f'a {cfg.resolution} px input reduced {self.encoder.downsampling}x '

@@ -195,7 +195,7 @@ class OnnxCalls:
         self.networks = networks
         # where graphs are kept (``graph_cache_dir``); None keeps none
         self.cache_dir = graph_cache_dir() if cache_dir == 'default' else cache_dir
-        self._sessions: dict[str, tuple] = {}
+        self._sessions: dict[tuple, tuple] = {}   # by call and image size
         self.loaded: list[str] = []     # the calls whose graphs came from the cache
         # the channels of the images the networks take, and of those the graphs take
         self.channels = _image_channels(networks)
@@ -204,7 +204,7 @@ class OnnxCalls:
     @property
     def exported(self) -> tuple[str, ...]:
         """The calls exported so far (those onnxruntime has run)."""
-        return tuple(sorted(self._sessions))
+        return tuple(sorted({module for module, _ in self._sessions}))
 
     def __call__(self, module: str, *args: torch.Tensor) -> tuple[torch.Tensor | None, ...]:
         if module not in MODULE_CALLS:
@@ -214,9 +214,12 @@ class OnnxCalls:
             return forward(self.networks, module, *(self._drawn(a) if a.dim() == 4 else a
                                                     for a in args))
         feed = [self._image(a) if a.dim() == 4 else a.detach().cpu().numpy() for a in args]
-        if module not in self._sessions:
-            self._sessions[module] = self._export(module, feed)
-        session, names, offsets = self._sessions[module]
+        # A graph per image size: a room larger than its type's square is seen larger, and
+        # graphs of fixed sizes keep the rooms of the paper's sizes on their fastest path.
+        key = (module, tuple(args[0].shape[2:]))
+        if key not in self._sessions:
+            self._sessions[key] = self._export(module, feed)
+        session, names, offsets = self._sessions[key]
         outs = tuple(torch.from_numpy(o) for o in
                      session.run(None, dict(zip(names, feed, strict=True))))
         if module == 'location' and not offsets:

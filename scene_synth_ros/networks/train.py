@@ -186,7 +186,8 @@ def batch_loss(module: str, net: nn.Module, batch: dict, cfg: PipelineConfig, de
     if module == 'category':
         logits = net(b['image'], b['counts'])
         loss = nn.functional.cross_entropy(logits, b['target'])
-        top5 = logits.topk(5, dim=1).indices
+        # a room type of fewer than five categories (with STOP) has every one in its top 5
+        top5 = logits.topk(min(5, logits.shape[1]), dim=1).indices
         return loss, {'loss': loss.item(),
                       'top1': (top5[:, 0] == b['target']).float().mean().item(),
                       'top5': (top5 == b['target'][:, None]).any(1).float().mean().item()}
@@ -403,12 +404,14 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
     corpora = load_corpora(rt, cfg, sizes, workers=t.threads or None, data_dir=data_dir,
                            cache=corpus_cache, echo=echo)
     m = cfg.model
+    nets = build_networks(rt, m, seed=t.seed, vocabulary=vocabulary)
+    multiple = nets['location'].multiple
     sources: dict[int, tuple[ExampleSource, ExampleSource]] = {
         n: tuple(ExampleSource(rt, rooms, m.resolution, m.location_resolution,
-                               target_radius=t.location_target_radius, vocabulary=vocabulary)
+                               target_radius=t.location_target_radius, vocabulary=vocabulary,
+                               multiple=multiple)
                  for rooms in (c.train, c.val))
         for n, c in corpora.items()}
-    nets = build_networks(rt, m, seed=t.seed, vocabulary=vocabulary)
     if others_from is not None:
         _take_networks(nets, bundle_path(others_from, rt, vocabulary), m,
                        [n for n in NETWORKS if n not in modules])

@@ -26,14 +26,14 @@ from typing import Iterable, Sequence
 
 from ..categories import PAPER, Vocabulary
 from ..scene import Scene
-from . import access, groups, walls
+from . import access, groups, home, walls
 from .rule import BEDS, Comparison, Outcome, Rate, Rule, category_of, two_proportion_p
 
 __all__ = ['BEDS', 'RULES', 'Comparison', 'Outcome', 'Rate', 'Rule', 'access', 'broken',
-           'category_of', 'compare', 'groups', 'measure', 'rates', 'rules', 'summarize',
+           'category_of', 'compare', 'groups', 'home', 'measure', 'rates', 'rules', 'summarize',
            'totals', 'two_proportion_p', 'walls']
 
-RULES: tuple[Rule, ...] = walls.RULES + groups.RULES + access.RULES
+RULES: tuple[Rule, ...] = walls.RULES + groups.RULES + access.RULES + home.RULES
 
 
 def rules() -> tuple[Rule, ...]:

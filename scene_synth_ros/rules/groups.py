@@ -53,9 +53,10 @@ way the stand does.
 bench chair, sofa chair, armchair); it keeps the rule when it is turned less than
 ``SQUARE_ANGLE`` (15 degrees) off the nearest of the room's axes (``spatial.off_axes``).
 
-``plausible_support``: the case is a second-tier object of a category in
-``PLAUSIBLE_PARENTS``; it keeps the rule when its parent's category is one of those listed for
-it there (a television on a TV stand or dresser, not on a desk; a table lamp on a nightstand,
+``plausible_support``: the case is a second-tier object of a category with plausible
+parents (``CategoryInfo.parents``: ``categories.PLAUSIBLE_PARENTS``, and in the rooms of a
+home ``categories.HOME_PARENTS``); it keeps the rule when its parent's category is one of
+them (a television on a TV stand or dresser, not on a desk; a table lamp on a nightstand,
 desk, dresser, dressing table or TV stand, not on a shoe cabinet).
 """
 from __future__ import annotations
@@ -101,9 +102,6 @@ SOFA_TARGETS = ('coffee table', 'tv stand', 'television')
 TV_PARENTS = ('tv stand', 'dresser')
 SQUARE_SEATS = SEATS + members('bench') + members('armchair')
 
-# Where a designer expects each second-tier object (``CategoryInfo.parents``).
-PLAUSIBLE_PARENTS: dict[str, tuple[str, ...]] = {
-    c.name: tuple(p for p, _ in c.parents) for c in CATEGORIES.values() if c.parents}
 
 
 # ---- geometry of groups ----------------------------------------------------------------
@@ -417,10 +415,17 @@ def chairs_square(scene: Scene) -> Outcome:
                   lambda s: off_axes(scene.room, s) < SQUARE_ANGLE)
 
 
-def plausible_support(scene: Scene) -> Outcome:
+def plausible_support(scene: Scene, vocabulary: Vocabulary = PAPER) -> Outcome:
+    # The parents the room type's category set gives (a kitchen's cups stand on its
+    # worktops too: ``categories.HOME_PARENTS``), else the paper's.
     category = {o.id: o.category for o in scene.objects}
-    children = [o for o in scene.second_tier if o.category in PLAUSIBLE_PARENTS]
-    return _count(children, lambda c: category.get(c.support) in PLAUSIBLE_PARENTS[c.category])
+    parents = {}
+    for o in scene.second_tier:
+        if o.category not in parents:
+            info = category_of(o.category, scene.room.room_type, vocabulary)
+            parents[o.category] = {p for p, _ in info.parents} if info is not None else set()
+    children = [o for o in scene.second_tier if parents[o.category]]
+    return _count(children, lambda c: category.get(c.support) in parents[c.category])
 
 
 RULES: tuple[Rule, ...] = (
@@ -460,7 +465,7 @@ RULES: tuple[Rule, ...] = (
     Rule('plausible_support', 'groups',
          'A second-tier object stands on a parent a designer expects for it (the table '
          'PLAUSIBLE_PARENTS: no TV on a desk, no table lamp on a shoe cabinet).',
-         plausible_support),
+         plausible_support, reads_vocabulary=True),
 )
 
 
