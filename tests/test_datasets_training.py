@@ -150,6 +150,19 @@ def test_trained_bundles_carry_their_category_set_and_furnish_rooms(data, kitche
     assert synth.generate(shell, seed=3).scene.to_dict() == scene.to_dict()
 
 
+@pytest.mark.slow
+def test_training_side_by_side_gives_the_bundle_of_one_process(data, kitchen_weights, tmp_path):
+    """``train --data --jobs``: the modules in processes side by side, the data set's rooms
+    read once and handed to them; the bundle is the one a single process trains."""
+    from scene_synth_ros.networks.jobs import train_side_by_side
+    lines = []
+    out = train_side_by_side(['kitchen'], tiny_config(), tmp_path / 'run', tmp_path / 'w', 2,
+                             echo=lines.append, data_dir=data)
+    assert out == [tmp_path / 'w' / 'kitchen.pt']
+    assert out[0].read_bytes() == (kitchen_weights / 'kitchen.pt').read_bytes()
+    assert any(line.startswith('kitchen/location: finished') for line in lines)
+
+
 def test_two_synthesizers_in_one_process_keep_their_own_room_types(data, kitchen_weights):
     """Loading weights of a data set changes nothing for anyone else in the process: each
     synthesizer's vocabulary parses its own layouts, the paper's refuses the data set's room

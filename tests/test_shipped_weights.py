@@ -68,8 +68,10 @@ def test_shipped_bundles_record_the_settings_of_the_config():
     last = {'compact_dims_noise': ('dimensions',), 'compact_category_long': ('category',),
             'shipped': NETWORKS}
     for rt in ROOM_TYPES:
-        data = torch.load(weights_dir() / f'{rt}.pt', map_location='cpu', weights_only=True,
-                          mmap=True)
+        path = weights_dir() / f'{rt}.pt'
+        if rt in HOME_ROOM_TYPES and not path.is_file():
+            continue                    # the home's bundles land apart from the config
+        data = torch.load(path, map_location='cpu', weights_only=True, mmap=True)
         recorded = PipelineConfig.from_dict(json.loads(data['config']))
         assert recorded.model == cfg.model, rt
         assert recorded.name in last, rt
