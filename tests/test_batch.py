@@ -201,7 +201,7 @@ def test_batch_bad_input_is_one_sentence(cli, tiny_weights, tmp_path):
             (('--workers', 2), 'is for batches'),
             (('--lockstep', 4), 'is for batches'),
             (('--png',), 'needs a file name'),
-            (('-n', 2, '--out', d, '--room-type', 'kitchen'), 'unknown room type'),
+            (('-n', 2, '--out', d, '--room-type', 'garage'), 'unknown room type'),
             (('-n', 2, '--out', d, '--runtime', 'onnxruntime', '--device', 'cuda'),
              'runs on the CPU, not on cuda' if torch.cuda.is_available()
              else 'torch sees no CUDA device')]:

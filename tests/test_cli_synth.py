@@ -40,7 +40,7 @@ def test_complete_keeps_the_objects_and_suggest_proposes(cli, tmp_path):
 
 def test_synthesis_bad_input_is_one_sentence(cli, tmp_path):
     for args, words in [
-            (('generate', '--room-type', 'kitchen'), 'unknown room type'),
+            (('generate', '--room-type', 'garage'), 'unknown room type'),
             (('generate', '--room-type', 'all'), 'one --room-type'),
             (('generate', '--weights-dir', tmp_path), 'no such weights file'),
             (('generate', '--temperature', '0'), '--temperature must be between 0.05 and 5'),

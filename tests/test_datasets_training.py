@@ -9,7 +9,14 @@ from conftest import tiny_config
 import pytest
 
 from scene_synth_ros import catalog
-from scene_synth_ros.categories import PAPER, RoomTypeSpec, paper_spec, resolve_room_type, room_spec
+from scene_synth_ros.categories import (
+    PAPER,
+    ROOM_TYPES,
+    RoomTypeSpec,
+    paper_spec,
+    resolve_room_type,
+    room_spec,
+)
 from scene_synth_ros.datasets import import_dataset
 from scene_synth_ros.datasets.training import (
     describe_dir,
@@ -100,9 +107,11 @@ def test_the_held_out_split_is_seeded_and_disjoint():
 def test_a_data_sets_vocabulary_knows_its_room_types_and_the_papers_does_not(data):
     specs = room_type_specs(describe_dir(data))
     vocabulary = PAPER.with_specs(specs.values())
-    assert vocabulary.room_types == ('bedroom', 'living', 'office', 'bathroom', 'kitchen')
+    # ProcTHOR's kitchens, a data set's own category set in place of the package's
+    assert vocabulary.room_types == ROOM_TYPES
     assert vocabulary.spec('bedroom') == specs['bedroom'] != paper_spec('bedroom')
     assert vocabulary.spec('Kitchen').names == specs['kitchen'].names
+    assert vocabulary.defines('kitchen') and specs['kitchen'] != paper_spec('kitchen')
     assert vocabulary.defines('bedroom') and not vocabulary.defines('office')
     v = catalog.variants('fridge', 'kitchen', vocabulary)[0]
     assert v.model_id == 'kitchen__fridge_00' and catalog.get(v.model_id, vocabulary) == v
@@ -111,9 +120,10 @@ def test_a_data_sets_vocabulary_knows_its_room_types_and_the_papers_does_not(dat
                                                        'rooms': 1})])
     assert vocabulary.with_specs([specs['bedroom']]) == vocabulary     # the same set: no change
     # The paper's vocabulary, in the same process, is untouched.
-    with pytest.raises(UnknownRoomType, match="unknown room type 'kitchen'"):
-        resolve_room_type('kitchen')
-    assert room_spec('bedroom') == paper_spec('bedroom') and PAPER.room_types[-1] == 'bathroom'
+    with pytest.raises(UnknownRoomType, match="unknown room type 'garage'"):
+        resolve_room_type('garage')
+    assert room_spec('bedroom') == paper_spec('bedroom') and PAPER.room_types == ROOM_TYPES
+    assert room_spec('kitchen') == paper_spec('kitchen') != specs['kitchen']
     with pytest.raises(KeyError):
         catalog.get('kitchen__fridge_00')
 
