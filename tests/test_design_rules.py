@@ -33,7 +33,7 @@ def test_every_rule_is_named_once_and_asks_one_question():
     names = [r.name for r in rules]
     assert len(names) == len(set(names)) and len(rules) >= 15
     for r in rules:
-        assert r.family in ('walls', 'groups', 'access')
+        assert r.family in ('walls', 'groups', 'access', 'home')
         assert r.question.strip() and '\n' not in r.question, r.name
 
 

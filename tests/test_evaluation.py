@@ -181,7 +181,7 @@ def test_eval_config_defaults_are_the_paper_sizes_and_bad_sizes_are_refused(tmp_
     with pytest.raises(EvaluationError, match='cannot write'):
         prepare_out_dir(blocker / 'report')
     with pytest.raises(UnknownRoomType, match='unknown room type'):
-        run_evaluation(['kitchen'], EvalConfig.quick(), tmp_path, progress=False)
+        run_evaluation(['garage'], EvalConfig.quick(), tmp_path, progress=False)
 
 
 # ---- the whole run ----------------------------------------------------------------------------
@@ -237,7 +237,7 @@ def test_quick_report_of_one_room_type_is_written_with_finite_numbers(cli, tmp_p
 def test_cli_bad_input_is_one_sentence(cli, tmp_path):
     blocker = tmp_path / 'file'
     blocker.write_text('')
-    for args, words in ((('--room-type', 'kitchen'), 'unknown room type'),
+    for args, words in ((('--room-type', 'garage'), 'unknown room type'),
                         (('--out', blocker / 'report'), 'cannot write the report'),
                         (('--workers', '0'), 'at least 1')):
         proc = cli('evaluate', '--quick', *args, ok=False)

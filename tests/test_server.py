@@ -172,7 +172,7 @@ def test_parameters_are_checked_and_applied(server):
     with pytest.raises(ConfigError, match='location_temperature must be between'):
         server.reconfigure({'location_temperature': -1.0})
     with pytest.raises(ConfigError, match='room_type'):
-        server.reconfigure({'room_type': 'kitchen'})
+        server.reconfigure({'room_type': 'garage'})
     with pytest.raises(ConfigError, match='read-only'):
         server.reconfigure({'torch_threads': 2})
     with pytest.raises(ConfigError, match='marker_style must be one of cube, mesh'):
