@@ -26,7 +26,7 @@ def generate_launch_description():
         DeclareLaunchArgument(
             'room_type', default_value='bedroom',
             description='room type of layouts arriving on ~/room_polygon: bedroom, living, '
-                        'office, bathroom, kitchen, dining or hallway (overrides params_file)'),
+                        'office or bathroom (overrides params_file)'),
         DeclareLaunchArgument(
             'params_file',
             default_value=PathJoinSubstitution([share, 'config', 'scene_synth_node.yaml']),

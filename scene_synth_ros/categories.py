@@ -20,10 +20,13 @@ from . import home_tables
 from .errors import RoomTypeConflict, UnknownRoomType
 
 # The paper's room types (its appendix table), then the rooms of real homes beyond them
-# (``home_tables``): every room type the package furnishes.
+# (``home_tables``). The corpus makes and the design rules judge them all
+# (``CORPUS_ROOM_TYPES``); ``ROOM_TYPES``, those the shipped weights furnish, are the
+# layouts' room types: a home's type joins them with its trained bundle.
 PAPER_ROOM_TYPES = ('bedroom', 'living', 'office', 'bathroom')
 HOME_ROOM_TYPES = ('kitchen', 'dining', 'hallway')
-ROOM_TYPES = PAPER_ROOM_TYPES + HOME_ROOM_TYPES
+CORPUS_ROOM_TYPES = PAPER_ROOM_TYPES + HOME_ROOM_TYPES
+ROOM_TYPES = PAPER_ROOM_TYPES
 
 # Rooms per type after the paper's filtering (section 4).
 ROOMS_IN_TABLE = {'bedroom': 6300, 'living': 1400, 'office': 1200, 'bathroom': 6800}
@@ -581,7 +584,11 @@ class Vocabulary:
 
     def spec(self, room_type: str) -> RoomTypeSpec:
         """The category set of ``room_type``: the data set's where it defines one, else the
-        paper's table."""
+        package's table (also for the rooms of a home whose weights are still to come, which
+        the corpus makes and the rules judge, though no layout may name them yet)."""
+        key = room_type.strip().lower().replace('_', ' ')
+        if key in CORPUS_ROOM_TYPES and key not in self._defined:
+            return paper_spec(key)
         room_type = self.resolve(room_type)
         return self._defined.get(room_type) or paper_spec(room_type)
 
@@ -632,6 +639,10 @@ def paper_spec(room_type: str) -> RoomTypeSpec:
 
 
 PAPER = Vocabulary.paper()
+# The room types the corpus makes, the rooms of a home among them: what training on the
+# corpus knows. A home's type not yet among ``ROOM_TYPES`` is defined as a data set's is, so
+# that its bundle carries its category set and the weights describe themselves.
+CORPUS = PAPER.with_specs(paper_spec(rt) for rt in CORPUS_ROOM_TYPES if rt not in ROOM_TYPES)
 
 
 # ``PAPER``'s methods unless a ``vocabulary`` is given, for the code that knows the paper's

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..categories import CORPUS
 from .common import WEIGHTS_DIR_HELP, UserError, room_types
 
 
@@ -101,8 +102,9 @@ def cmd_train(args) -> int:
         types = known if args.room_type == 'all' else \
             [part.strip().lower() for part in args.room_type.split(',')]
     else:
+        # the corpus's room types: the rooms of a home whose weights are to come too
         types = list(dict.fromkeys(rt for part in args.room_type.split(',')
-                                   for rt in room_types(part.strip())))
+                                   for rt in room_types(part.strip(), CORPUS)))
     if args.jobs is not None:
         from ..networks.jobs import train_side_by_side
         try:

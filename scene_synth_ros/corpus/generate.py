@@ -11,7 +11,8 @@ from typing import Iterator
 import numpy as np
 
 from .. import rules as design_rules
-from ..categories import CATEGORIES, ROOM_TYPES, resolve_room_type
+from ..categories import CATEGORIES, CORPUS_ROOM_TYPES, ROOM_TYPE_ALIASES
+from ..errors import UnknownRoomType
 from ..geometry import check_scene
 from ..parallel import process_pool
 from ..scene import Room, Scene
@@ -52,14 +53,20 @@ class RoomRequest:
 def room_rng(room_type: str, seed: int, index: int) -> np.random.SeedSequence:
     # One independent stream per (seed, room type, index): a room is the same whichever
     # worker makes it and however many rooms are made.
-    return np.random.SeedSequence([seed, ROOM_TYPES.index(room_type), index])
+    return np.random.SeedSequence([seed, CORPUS_ROOM_TYPES.index(room_type), index])
 
 
 def corpus_room_type(name: str) -> str:
-    """The room type ``name`` names (``UnknownRoomType`` for any other): the corpus furnishes
-    the package's room types with the package's categories (``categories.PAPER``), whatever
-    vocabulary the weights in use have."""
-    return resolve_room_type(name)
+    """The corpus's room type ``name`` names (``UnknownRoomType`` for any other): the
+    package's room types with the package's categories (``categories.PAPER``), whatever
+    vocabulary the weights in use have, and the rooms of a home whose weights are still to
+    come (``categories.CORPUS_ROOM_TYPES``)."""
+    key = name.strip().lower().replace('_', ' ')
+    key = ROOM_TYPE_ALIASES.get(key, key)
+    if key in CORPUS_ROOM_TYPES:
+        return key
+    raise UnknownRoomType(f'unknown room type {name[:80]!r} for the corpus; expected one of '
+                          f'{", ".join(CORPUS_ROOM_TYPES)}')
 
 
 def _drawn(room_type: str, rng: np.random.Generator, calibration: dict[str, float]):

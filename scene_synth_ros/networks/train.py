@@ -19,7 +19,7 @@ from torch import nn
 from tqdm import tqdm
 
 from ..catalog import variants
-from ..categories import PAPER, Vocabulary
+from ..categories import CORPUS, PAPER, Vocabulary
 from ..corpus.generate import generate_corpus
 from ..datasets.training import describe_dir, room_type_specs, split_rooms
 from ..files import writing_together
@@ -50,9 +50,9 @@ class RoomCorpus:
 
 def data_vocabulary(data_dir: Path | None) -> Vocabulary:
     """What the rooms of ``data_dir``, an imported data set, know: the paper's table with the
-    data set's category sets; the paper's alone without one."""
+    data set's category sets; without one, the corpus's (``CORPUS``)."""
     if data_dir is None:
-        return PAPER
+        return CORPUS
     return PAPER.with_specs(room_type_specs(describe_dir(data_dir)).values())
 
 
