@@ -6,13 +6,13 @@ import json
 from pathlib import Path
 import time
 
-from ..categories import ROOM_TYPES
+from ..categories import CORPUS, CORPUS_ROOM_TYPES
 from .common import UserError, load_scene_file, room_types
 
 
 def add_parser(sub) -> None:
     c = sub.add_parser('corpus', help='generate procedural furnished rooms as JSON scenes')
-    c.add_argument('--room-type', default='bedroom', help=f'{"|".join(ROOM_TYPES)}|all')
+    c.add_argument('--room-type', default='bedroom', help=f'{"|".join(CORPUS_ROOM_TYPES)}|all')
     c.add_argument('-n', type=int, default=100, help='rooms per room type')
     c.add_argument('--out', required=True, help='output directory')
     c.add_argument('--seed', type=int, default=0, help='corpus seed: the same seed gives the '
@@ -22,7 +22,7 @@ def add_parser(sub) -> None:
     c.set_defaults(func=cmd_corpus)
 
     c = sub.add_parser('corpus-stats', help="compare the corpus with the paper's table")
-    c.add_argument('--room-type', default='all', help=f'{"|".join(ROOM_TYPES)}|all')
+    c.add_argument('--room-type', default='all', help=f'{"|".join(CORPUS_ROOM_TYPES)}|all')
     c.add_argument('-n', type=int, default=2000, help='rooms per type to generate')
     c.add_argument('--seed', type=int, default=0, help='corpus seed')
     c.add_argument('--dir', help='read scenes from this directory instead of generating')
@@ -34,7 +34,7 @@ def add_parser(sub) -> None:
     c = sub.add_parser('corpus-calibrate', help="fit how often the corpus asks for each "
                        "category, so that its rooms match the paper's table (written to "
                        "corpus/calibration.json)")
-    c.add_argument('--room-type', default='all', help=f'{"|".join(ROOM_TYPES)}|all')
+    c.add_argument('--room-type', default='all', help=f'{"|".join(CORPUS_ROOM_TYPES)}|all')
     c.add_argument('--rooms', type=int, default=2000, help='rooms per type and iteration')
     c.add_argument('--iterations', type=int, default=3, help='rounds of fitting')
     c.add_argument('--seed', type=int, default=12345, help='first corpus seed of the rooms fitted '
@@ -50,12 +50,12 @@ def cmd_corpus(args) -> int:
     from ..schema import save_scene
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    for rt in room_types(args.room_type):
+    for rt in room_types(args.room_type, CORPUS):
         t0 = time.perf_counter()
         rooms = generate_corpus(rt, args.n, seed=args.seed, workers=args.workers)
         for i, scene in enumerate(tqdm(rooms, total=args.n, desc=rt, unit='room',
                                        disable=args.quiet)):
-            save_scene(scene, out / f'{rt}_{i:05d}.json')
+            save_scene(scene, out / f'{rt}_{i:05d}.json', vocabulary=CORPUS)
         if not args.quiet:
             print(f'{rt}: {args.n} rooms in {time.perf_counter() - t0:.1f} s -> {out}')
     return 0
@@ -69,7 +69,7 @@ def _scenes(rt: str, args):
     files = sorted(Path(args.dir).glob(f'{rt}_*.json'))
     if not files:
         raise UserError(f'{args.dir}: no {rt}_*.json scene files')
-    return (load_scene_file(str(f)) for f in files)
+    return (load_scene_file(str(f), vocabulary=CORPUS) for f in files)
 
 
 def _print_summary(rows: list[dict]) -> None:
@@ -90,7 +90,7 @@ def _print_summary(rows: list[dict]) -> None:
 def cmd_corpus_stats(args) -> int:
     from ..corpus.stats import collect
     rows = []
-    for rt in room_types(args.room_type):
+    for rt in room_types(args.room_type, CORPUS):
         stats = collect(rt, _scenes(rt, args))
         rows.append(stats.summary_row())
         if args.categories:
@@ -106,5 +106,5 @@ def cmd_corpus_stats(args) -> int:
 def cmd_corpus_calibrate(args) -> int:
     from ..corpus.calibrate import calibrate
     calibrate(rooms=args.rooms, iterations=args.iterations, seed=args.seed,
-              room_types=room_types(args.room_type), workers=args.workers)
+              room_types=room_types(args.room_type, CORPUS), workers=args.workers)
     return 0
