@@ -2,7 +2,8 @@
 derived from the imported scenes and meant to be read and edited by a person.
 
 Per room type: ``rooms``; ``size_cap`` (the side in metres of the square its images cover:
-the largest room's span rounded up to 0.5 m, at most the room-size filter's bound); doors and
+the package's square for its own room types, else the room-size filter's, else the largest
+room's span rounded up to 0.5 m); doors and
 windows per room; and per category:
 
 * ``count`` (objects), ``per_room`` (count / rooms: the paper's frequency), ``rooms_with``;
@@ -40,7 +41,7 @@ import numpy as np
 from shapely.geometry import LineString, Point, Polygon
 import yaml
 
-from ..categories import ROLES, roles_of
+from ..categories import ROLES, ROOM_SIZE_CAP, roles_of
 from ..errors import DatasetError, quoted
 from ..files import write_atomic
 from ..scene import Room
@@ -168,13 +169,12 @@ class Describer:
     def _type(self, rt: str, t: _TypeTally) -> dict[str, Any]:
         cats = {name: _with_roles(name, _category(seen, t.rooms, t.rooms_with[name]))
                 for name, seen in sorted(t.objects.items(), key=lambda kv: (-len(kv[1]), kv[0]))}
-        # The square a type's images cover: its largest room's, not the filter's bound, so
-        # that a data set of small rooms is not seen at the coarse pixels of the largest
-        # room the filter lets through.
-        cap = math.ceil(t.largest * 2) / 2
-        limit = self.config.size_limit(rt)
-        if limit is not None:
-            cap = min(cap, limit)
+        # The square a type's images cover: the package's for its own room types (a larger
+        # room is seen larger at the same pixels), else the room-size filter's, else the
+        # largest room's.
+        cap = ROOM_SIZE_CAP.get(rt, self.config.size_limit(rt))
+        if cap is None:
+            cap = math.ceil(t.largest * 2) / 2
         return {'rooms': t.rooms, 'size_cap': float(cap),
                 'doors_per_room': round(t.doors / t.rooms, 3),
                 'windows_per_room': round(t.windows / t.rooms, 3),
