@@ -31,9 +31,11 @@ ROOM_TYPES = PAPER_ROOM_TYPES
 # Rooms per type after the paper's filtering (section 4).
 ROOMS_IN_TABLE = {'bedroom': 6300, 'living': 1400, 'office': 1200, 'bathroom': 6800}
 
-# Side of the square area, in metres, that a top-down image of each room type covers. A room
-# whose floor does not fit in this square cannot be rendered and is rejected on input; at
-# 64 px this is 9.4 cm (bedroom), 12.5 cm (living), 10.9 cm (office), 7.8 cm (bathroom) a pixel.
+# Side of the square area, in metres, that a top-down image of each room type covers at the
+# networks' resolution, and so its pixels' size: at 64 px 9.4 cm (bedroom), 12.5 cm (living),
+# 10.9 cm (office), 7.8 cm (bathroom) a pixel. A larger room (up to
+# ``thresholds.MAX_ROOM_SIDE``) is seen in a larger image of the same pixels
+# (``render.Frame.for_room``).
 ROOM_SIZE_CAP = {'bedroom': 6.0, 'living': 8.0, 'office': 7.0, 'bathroom': 5.0,
                  # at the bedroom's 9.4 cm a pixel: a hallway's 0.9 m path is ten pixels
                  'kitchen': 6.0, 'dining': 7.0, 'hallway': 6.0}
