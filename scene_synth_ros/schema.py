@@ -340,8 +340,9 @@ def check_floor(points: list[list[float]], prefix: str) -> list[tuple[float, flo
 
 
 def _check_fits(room: Room, prefix: str, vocabulary: Vocabulary) -> None:
-    """The room must fit its type's square in its own axes: the question the networks'
-    frame asks (``render.room_frame_box``), so every room accepted here can be furnished."""
+    """The room must be at most as long as a room may be, in its own axes: the question the
+    networks' frame asks (``render.room_frame_box``), so every room accepted here can be
+    furnished."""
     box = room_frame_box(room, vocabulary)
     if not box.fits:
         path = _join(prefix, 'floor')

@@ -2,7 +2,8 @@
 
 In order: the room type is mapped (unmapped: dropped); the floor is checked with the
 package's own floor checks (``schema.check_floor``: simple, at least 2 m², no repeated
-vertices) and must fit its type's square in the room's own axes (``render.room_axis_yaw``);
+vertices) and must be at most the room-size filter's length along its own axes
+(``render.room_axis_yaw``);
 openings are put on the wall whose line is nearest to their footprint, measured along it,
 merged where the source splits one opening into several meshes, and checked against the
 layout schema's limits (a door 0.3 to 5 m wide and at least 1.5 m high); objects are

@@ -115,7 +115,8 @@ class ExampleSource:
 
     @property
     def extent(self) -> float:
-        """Metres of room an image covers (the room type's size cap)."""
+        """Metres of room an image at the networks' resolution covers (the room type's size
+        cap; a larger room's image covers more, at the same pixels)."""
         return self.spec.size_cap
 
     @property
