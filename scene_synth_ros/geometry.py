@@ -195,6 +195,15 @@ def local_xy(obj: PlacedObject, xy) -> tuple[float, float]:
     return c * dx + s * dy, c * dy - s * dx
 
 
+def local_box(obj: PlacedObject, x0: float, x1: float, y0: float, y1: float) -> Polygon:
+    """The rectangle [x0, x1] x [y0, y1] of ``obj``'s frame (x to its front, y to its left)
+    in the world: a strip before its front, beside it, behind it."""
+    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
+    ox, oy = obj.position[0], obj.position[1]
+    return Polygon([(ox + c * x - s * y, oy + s * x + c * y)
+                    for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))])
+
+
 def nearest_point(obj: PlacedObject, xy) -> tuple[float, float]:
     """The point of ``obj``'s footprint nearest to ``xy`` (``xy`` itself when inside)."""
     x, y = local_xy(obj, xy)

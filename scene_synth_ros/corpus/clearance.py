@@ -15,11 +15,11 @@ first free alternative of each.
 from __future__ import annotations
 
 from dataclasses import dataclass
-import math
 
 from shapely.geometry import Polygon
 
 from ..categories import CATEGORIES, members
+from ..geometry import local_box
 from ..rules.access import SEATS as TABLE_SEATS
 from ..rules.access import STORAGE, USED_FRONT
 from ..scene import PlacedObject
@@ -60,24 +60,15 @@ class Zone:
     allowed: tuple[str, ...] = ()
 
 
-def _box(obj: PlacedObject, x0: float, x1: float, y0: float, y1: float) -> Polygon:
-    """The rectangle [x0, x1] x [y0, y1] of the object's frame (x to its front, y to its
-    left), in room coordinates."""
-    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
-    px, py = obj.position[0], obj.position[1]
-    return Polygon([(px + c * x - s * y, py + s * x + c * y)
-                    for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))])
-
-
 def _front(obj: PlacedObject, depth: float, stretch: float | None = None,
            where: float = 0.0) -> Polygon:
     """The strip ``depth`` deep before the front, over its whole width or over ``stretch``
     metres of it centred ``where`` (-1 right end, 0 middle, 1 left end)."""
     d, w = obj.depth / 2, obj.width / 2
     if stretch is None or stretch >= obj.width:
-        return _box(obj, d, d + depth, -w, w)
+        return local_box(obj, d, d + depth, -w, w)
     centre = where * (w - stretch / 2)
-    return _box(obj, d, d + depth, centre - stretch / 2, centre + stretch / 2)
+    return local_box(obj, d, d + depth, centre - stretch / 2, centre + stretch / 2)
 
 
 def _long_side(obj: PlacedObject, side: int, depth: float) -> Polygon:
@@ -86,27 +77,27 @@ def _long_side(obj: PlacedObject, side: int, depth: float) -> Polygon:
     d, w = obj.depth / 2, obj.width / 2
     x0 = -d + min(HEAD_END, obj.depth / 2)
     y = (w, w + depth) if side > 0 else (-w - depth, -w)
-    return _box(obj, x0, d, *y)
+    return local_box(obj, x0, d, *y)
 
 
 def _head(obj: PlacedObject, side: int) -> Polygon:
     """Beside the head of a bed, where the largest nightstand stands."""
     d, w = obj.depth / 2, obj.width / 2
-    return _box(obj, -d, -d + NIGHTSTAND[1], *((w, w + NIGHTSTAND[0]) if side > 0
+    return local_box(obj, -d, -d + NIGHTSTAND[1], *((w, w + NIGHTSTAND[0]) if side > 0
                                               else (-w - NIGHTSTAND[0], -w)))
 
 
 def _end(obj: PlacedObject, side: int, depth: float) -> Polygon:
     """Beyond one end of a piece whose front is a long side (a daybed)."""
     d, w = obj.depth / 2, obj.width / 2
-    return _box(obj, -d, d, *((w, w + depth) if side > 0 else (-w - depth, -w)))
+    return local_box(obj, -d, d, *((w, w + depth) if side > 0 else (-w - depth, -w)))
 
 
 def _around(obj: PlacedObject, depth: float, open_sides: str = 'xXyY') -> Polygon:
     """The box ``depth`` wider than the piece on each of ``open_sides`` ('X' front, 'x'
     back, 'Y' left end, 'y' right end), flush with it on the others."""
     d, w = obj.depth / 2, obj.width / 2
-    return _box(obj, -d - depth * ('x' in open_sides), d + depth * ('X' in open_sides),
+    return local_box(obj, -d - depth * ('x' in open_sides), d + depth * ('X' in open_sides),
                 -w - depth * ('y' in open_sides), w + depth * ('Y' in open_sides))
 
 

@@ -68,7 +68,7 @@ import shapely
 from shapely.geometry import LineString, Polygon
 
 from ..categories import CATEGORIES, PAPER, Vocabulary, members
-from ..geometry import local_xy, nearest_point, within_reach
+from ..geometry import local_box, local_xy, nearest_point, within_reach
 from ..scene import PlacedObject, Scene, wrap_angle
 from ..thresholds import (
     BIDET_GAP,
@@ -200,15 +200,6 @@ PARTNER_RULES: dict[str, tuple[str, ...]] = {
 }
 
 
-def _box(obj: PlacedObject, x0: float, x1: float, y0: float, y1: float) -> Polygon:
-    """The rectangle [x0, x1] x [y0, y1] of ``obj``'s frame (x to its front, y to its left)
-    in the world."""
-    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
-    ox, oy = obj.position[0], obj.position[1]
-    return Polygon([(ox + c * x - s * y, oy + s * x + c * y)
-                    for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))])
-
-
 def partner_zone(scene: Scene, rule: str, category: str, vocabulary: Vocabulary = PAPER):
     """Where the centre of a new first-tier ``category`` piece can stand for ``rule`` (one
     of ``PARTNER_RULES``) to hold for it, given the partners in ``scene``: a shapely
@@ -226,7 +217,7 @@ def partner_zone(scene: Scene, rule: str, category: str, vocabulary: Vocabulary 
         for t in partners:
             hx, hy = t.depth / 2, t.width / 2
             if t.category in WORKTOPS:
-                boxes.append(_box(t, hx, hx + SEAT_REACH + m, -hy, hy))
+                boxes.append(local_box(t, hx, hx + SEAT_REACH + m, -hy, hy))
             else:
                 boxes.append(t.footprint().buffer(SEAT_REACH + m, join_style='mitre'))
     elif rule == 'nightstand_by_bed':
@@ -236,15 +227,15 @@ def partner_zone(scene: Scene, rule: str, category: str, vocabulary: Vocabulary 
         for b in partners:
             hx, hy = b.depth / 2, b.width / 2
             x0, x1 = -hx - NIGHTSTAND_GAP - m, -hx + min(HEAD_END, b.depth) + NIGHTSTAND_GAP + m
-            boxes += [_box(b, x0, x1, hy, hy + NIGHTSTAND_GAP + m),
-                      _box(b, x0, x1, -hy - NIGHTSTAND_GAP - m, -hy)]
+            boxes += [local_box(b, x0, x1, hy, hy + NIGHTSTAND_GAP + m),
+                      local_box(b, x0, x1, -hy - NIGHTSTAND_GAP - m, -hy)]
     elif rule == 'bidet_by_toilet':
         partners = _first_tier(scene, ('toilet',))
         for t in partners:
             hx, hy = t.depth / 2, t.width / 2
             x0, x1 = -hx - SAME_LINE_OFFSET, -hx + SAME_LINE_OFFSET + 2 * m
-            boxes += [_box(t, x0, x1, hy, hy + BIDET_GAP + m),
-                      _box(t, x0, x1, -hy - BIDET_GAP - m, -hy)]
+            boxes += [local_box(t, x0, x1, hy, hy + BIDET_GAP + m),
+                      local_box(t, x0, x1, -hy - BIDET_GAP - m, -hy)]
     elif category == 'coffee table':
         # A table may come before its seats (the importance order of a bedroom puts it
         # before easy chairs): with no lounge seating in the room yet it goes anywhere.
@@ -253,7 +244,7 @@ def partner_zone(scene: Scene, rule: str, category: str, vocabulary: Vocabulary 
             return None
         for s in partners:
             hx, hy = s.depth / 2, s.width / 2
-            boxes.append(_box(s, hx, hx + LOUNGE_REACH + m, -hy - m, hy + m))
+            boxes.append(local_box(s, hx, hx + LOUNGE_REACH + m, -hy - m, hy + m))
     else:
         # Lounge seating goes anywhere, but by a coffee table still waiting for its seats.
         partners = [scene.get(t) for t, ok in coffee_table_verdicts(scene).items() if not ok]

@@ -36,7 +36,7 @@ import math
 from shapely.geometry import Polygon
 
 from ..categories import members
-from ..geometry import local_xy
+from ..geometry import local_box, local_xy
 from ..scene import PlacedObject, Scene
 from ..thresholds import (
     DOOR_SWING,
@@ -59,15 +59,6 @@ DINING_SURFACES = members('dining surface')
 
 def _first_tier(scene: Scene, categories) -> list[PlacedObject]:
     return [o for o in scene.first_tier if o.category in categories]
-
-
-def _box(obj: PlacedObject, x0: float, x1: float, y0: float, y1: float) -> Polygon:
-    """The rectangle [x0, x1] x [y0, y1] of the object's frame (x to its front), in room
-    coordinates."""
-    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
-    px, py = obj.position[0], obj.position[1]
-    return Polygon([(px + c * x - s * y, py + s * x + c * y)
-                    for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))])
 
 
 def _clear(scene: Scene, strip: Polygon, owner: PlacedObject) -> bool:
@@ -117,7 +108,7 @@ def counter_run(scene: Scene) -> Outcome:
 
 
 def front_verdicts(scene: Scene) -> dict[str, bool]:
-    return {o.id: _clear(scene, _box(o, o.depth / 2, o.depth / 2 + DOOR_SWING,
+    return {o.id: _clear(scene, local_box(o, o.depth / 2, o.depth / 2 + DOOR_SWING,
                                      -o.width / 2, o.width / 2), o)
             for o in _first_tier(scene, DOOR_FRONTS)}
 
@@ -133,7 +124,7 @@ def seat_verdicts(scene: Scene) -> dict[str, bool]:
     out = {}
     for seat in _first_tier(scene, DINING_SEATS):
         at = surfaces + (counters if seat.category == 'bar stool' else [])
-        behind = _box(seat, -seat.depth / 2 - PULL_OUT, -seat.depth / 2,
+        behind = local_box(seat, -seat.depth / 2 - PULL_OUT, -seat.depth / 2,
                       -seat.width / 2, seat.width / 2)
         out[seat.id] = any(seated_at(seat, t) for t in at) and _clear(scene, behind, seat)
     return out
