@@ -20,6 +20,7 @@ import time
 
 from benchlib import invalid_layout, layout_text, rss_mb
 
+from scene_synth_ros.categories import ROOM_TYPES
 from scene_synth_ros.ros_client import SceneSynthClient, start_node, stop_node
 
 
@@ -91,9 +92,9 @@ def main() -> int:
 
             # 3. soak: valid and invalid layouts mixed
             rng = random.Random(0)
-            room_types = ('bedroom', 'living', 'office', 'bathroom')
             for k in range(10):
-                client.publish_layout(layout_text(room_types[k % 4], 3000 + k), timeout=60)
+                client.publish_layout(layout_text(ROOM_TYPES[k % len(ROOM_TYPES)], 3000 + k),
+                                      timeout=60)
             start = rss_mb(proc.pid)
             valid = answered = rejected_sent = 0
             rejected0 = int(client.diagnostics()['inputs rejected'])
@@ -104,7 +105,7 @@ def main() -> int:
                     rejected_sent += 1
                     continue
                 valid += 1
-                d = client.publish_layout(layout_text(room_types[k % 4], 4000 + k),
+                d = client.publish_layout(layout_text(ROOM_TYPES[k % len(ROOM_TYPES)], 4000 + k),
                                           timeout=60)
                 answered += d is not None
             client.spin_until(lambda: int(client.diagnostics()['inputs rejected'])

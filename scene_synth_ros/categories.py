@@ -22,11 +22,11 @@ from .errors import RoomTypeConflict, UnknownRoomType
 # The paper's room types (its appendix table), then the rooms of real homes beyond them
 # (``home_tables``). The corpus makes and the design rules judge them all
 # (``CORPUS_ROOM_TYPES``); ``ROOM_TYPES``, those the shipped weights furnish, are the
-# layouts' room types: a home's type joins them with its trained bundle.
+# layouts' room types: a new type joins them with its trained bundle (all have).
 PAPER_ROOM_TYPES = ('bedroom', 'living', 'office', 'bathroom')
 HOME_ROOM_TYPES = ('kitchen', 'dining', 'hallway')
 CORPUS_ROOM_TYPES = PAPER_ROOM_TYPES + HOME_ROOM_TYPES
-ROOM_TYPES = PAPER_ROOM_TYPES
+ROOM_TYPES = PAPER_ROOM_TYPES + HOME_ROOM_TYPES
 
 # Rooms per type after the paper's filtering (section 4).
 ROOMS_IN_TABLE = {'bedroom': 6300, 'living': 1400, 'office': 1200, 'bathroom': 6800}

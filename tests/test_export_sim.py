@@ -14,6 +14,7 @@ from conftest import EXAMPLES
 import numpy as np
 import pytest
 
+from scene_synth_ros.categories import ROOM_TYPES
 from scene_synth_ros.corpus import HELDOUT_SEED
 from scene_synth_ros.corpus.generate import empty_room, generate_room
 from scene_synth_ros.export import export_mjcf, export_urdf, scene_bodies, wall_boxes
@@ -42,6 +43,8 @@ ROOMS = {
     'corpus-bathroom-L': ('corpus', 'bathroom', 10),
     'synth-bedroom-L': ('synth', 'bedroom', 1), 'synth-living-L': ('synth', 'living', 0),
     'synth-office': ('synth', 'office', 0), 'synth-bathroom-L': ('synth', 'bathroom', 2),
+    'corpus-kitchen': ('corpus', 'kitchen', 0), 'synth-kitchen': ('synth', 'kitchen', 1),
+    'synth-dining': ('synth', 'dining', 0), 'synth-hallway': ('synth', 'hallway', 0),
     'example-bedroom': ('example', 'bedroom_layout.json', 0),
     'example-lshaped-living': ('example', 'lshaped_living_layout.json', 1),
     'example-partial-bedroom': ('example', 'partial_bedroom.json', None),
@@ -67,7 +70,7 @@ def room(name: str):
 
 def test_the_rooms_cover_every_type_and_l_shapes():
     scenes = [room(n) for n in ROOMS]
-    assert {s.room.room_type for s in scenes} == {'bedroom', 'living', 'office', 'bathroom'}
+    assert {s.room.room_type for s in scenes} == set(ROOM_TYPES)
     assert sum(len(s.room.floor) > 4 for s in scenes) >= 6
     assert sum(len(s.second_tier) for s in scenes) >= 5
     assert all(len(s.objects) >= 2 for s in scenes)

@@ -14,6 +14,7 @@ from shapely.geometry import Point
 import trimesh
 
 from scene_synth_ros import catalog, plot
+from scene_synth_ros.categories import ROOM_TYPES
 from scene_synth_ros.corpus.generate import generate_room
 from scene_synth_ros.export import WALL_THICKNESS, wall_boxes
 from scene_synth_ros.markers import (
@@ -305,7 +306,7 @@ def test_each_shipped_mesh_names_its_own_material_library():
         assert tuple(geom.visual.material.diffuse) == MATERIALS[name].rgba
 
 
-@pytest.mark.parametrize('room_type', ['bedroom', 'living', 'office', 'bathroom'])
+@pytest.mark.parametrize('room_type', ROOM_TYPES)
 def test_mesh_markers_of_a_furnished_room_are_shipped_package_meshes(room_type):
     scene = generate_room(room_type, 0, 3)
     markers = scene_markers(scene, 'mesh')

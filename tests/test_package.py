@@ -11,6 +11,8 @@ import zipfile
 
 import pytest
 
+from scene_synth_ros.categories import ROOM_TYPES
+
 ROOT = Path(__file__).resolve().parent.parent
 ROS_DEPS = {'rclpy', 'std_msgs', 'geometry_msgs', 'visualization_msgs', 'std_srvs',
             'diagnostic_msgs'}
@@ -71,7 +73,7 @@ def test_wheel_installs_the_ament_data_files(wheel):
     assert any(n.startswith(data + 'share/scene_synth_ros/examples/') for n in names)
     assert 'scene_synth_ros/corpus/calibration.json' in names
     assert 'scene_synth_ros/datasets/room_types.yaml' in names    # the import's room types
-    for rt in ('bedroom', 'living', 'office', 'bathroom'):
+    for rt in ROOM_TYPES:
         assert f'scene_synth_ros/weights/{rt}.pt' in names
     for cfg in ('compact', 'paper', 'scene_synth_node'):
         assert f'{data}share/scene_synth_ros/config/{cfg}.yaml' in names
