@@ -27,6 +27,9 @@ PAPER_ROOM_TYPES = ('bedroom', 'living', 'office', 'bathroom')
 HOME_ROOM_TYPES = ('kitchen', 'dining', 'hallway')
 CORPUS_ROOM_TYPES = PAPER_ROOM_TYPES + HOME_ROOM_TYPES
 ROOM_TYPES = PAPER_ROOM_TYPES + HOME_ROOM_TYPES
+# Room types that are passages first: one too narrow for any of its furniture is furnished
+# empty rather than refused (a corridor of a real home often holds nothing).
+PASSAGE_ROOM_TYPES = ('hallway',)
 
 # Rooms per type after the paper's filtering (section 4).
 ROOMS_IN_TABLE = {'bedroom': 6300, 'living': 1400, 'office': 1200, 'bathroom': 6800}

@@ -4,7 +4,7 @@ Objects are inserted one at a time, each in the paper's steps. Next Object Categ
 category module draws the next category, or STOP. Object Location: the location module gives
 a distribution over the room for it, masked to the floor (or, for a second-tier category, to
 the surfaces observed to support it; for a piece of a group kept at insertion, to where a
-partner could have it: ``groups.partner_zone``) and tempered, and locations are drawn from
+partner could have it: ``rules.insertion.partner_zone``) and tempered, and locations are drawn from
 it, the first ones moved to the centre of the blob they fell in
 (``SynthConfig.location_mode``, ``centre_draws``) and, in bundles with offsets, by the
 offset predicted there; when they all fail for a piece of a group, a few more are drawn
@@ -22,8 +22,9 @@ tier) stands less than 70 % on its parent or overlaps its neighbours there; then
 model is tried, then the next location, and if nothing fits the category is drawn again
 without the failed ones. A STOP drawn while a group still owes a partner
 (``SynthConfig.owed_partners``: a coffee table without seating, a double bed without a
-nightstand) is answered with one more draw among the partners' categories; a coffee table
-the finished room still leaves without seating is taken out again (``groups.withdrawable``).
+nightstand, a kitchen without its sink, stove or fridge) is answered with one more draw
+among the partners' categories; a coffee table the finished room still leaves without
+seating is taken out again (``groups.withdrawable``).
 An empty room in which the robot cannot drive between the doors is refused in one sentence.
 
 Three modes: ``generate`` (an empty room), ``complete`` (a partial room: keeps what is
@@ -51,7 +52,7 @@ from shapely.geometry import Polygon
 import torch
 
 from . import catalog
-from .categories import PAPER, RoomTypeSpec, Vocabulary
+from .categories import PAPER, PASSAGE_ROOM_TYPES, RoomTypeSpec, Vocabulary
 from .errors import SceneSynthError, UnknownCategory, quoted
 from .geometry import (
     door_zone,
@@ -74,8 +75,15 @@ from .networks.orientation import decode_angle, snap_angle
 from .networks.runtime import OnnxCalls
 from .paths import weights_dir as shipped_weights_dir
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer, quarter_turns, turn_image
-from .rules import groups, robot
-from .rules.insertion import INSERTION_RULES, rule_categories, verdicts
+from .rules import groups, home, robot
+from .rules.insertion import (
+    INSERTION_RULES,
+    OWED_RULES,
+    owed,
+    partner_zone,
+    rule_categories,
+    verdicts,
+)
 from .rules.robot import RobotReport, RobotState
 from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
 from .synth_config import SynthConfig
@@ -142,7 +150,10 @@ def against_walls(room: Room, obj: PlacedObject, reach: float,
 def check_room_fits(room: Room, vocabulary: Vocabulary = PAPER) -> None:
     """SynthesisError unless the smallest first-tier model of the room's type (in
     ``vocabulary``) fits on its floor outside the door zones (a narrow strip passes the
-    schema's area check but can hold nothing)."""
+    schema's area check but can hold nothing); a passage (``PASSAGE_ROOM_TYPES``) may hold
+    nothing."""
+    if room.room_type in PASSAGE_ROOM_TYPES:
+        return
     spec = vocabulary.spec(room.room_type)
     small = min((v for c in spec.categories if c.tier == 'first'
                  for v in catalog.variants(c.name, spec.room_type, vocabulary)),
@@ -389,7 +400,7 @@ class Synthesizer:
                 if obj is None and why == 'stop':
                     # A group still owed a partner gets one more draw, as long as the last
                     # one mended something (a partner that found no case's side ends it).
-                    broken, partners = groups.owed(out, cfg.owed_partners)
+                    broken, partners = owed(out, cfg.owed_partners)
                     if 0 < broken < owing:
                         owing = broken
                         obj, _ = self._insert_one(ctx, out, allow_stop=False, only=partners)
@@ -436,7 +447,7 @@ class Synthesizer:
             # none, the group rule that would refuse it outright is waived for it.
             ctx.waived = frozenset(
                 rule for rule in ctx.config.insertion_rules
-                if (zone := groups.partner_zone(scene, rule, category,
+                if (zone := partner_zone(scene, rule, category,
                                                 self.vocabulary)) is not None
                 and zone.is_empty)
         with torch.inference_mode():
@@ -600,7 +611,7 @@ class Synthesizer:
             for rule in ctx.config.insertion_rules:
                 if rule in ctx.waived:
                     continue
-                zone = groups.partner_zone(scene, rule, category, self.vocabulary)
+                zone = partner_zone(scene, rule, category, self.vocabulary)
                 if zone is not None:
                     zoned = True
                     mask &= shapely.contains_xy(zone, ctx.centres[:, 0],
@@ -731,6 +742,10 @@ class Synthesizer:
                                v.size, parent.id if parent is not None else None)
             if parent is None and ctx.config.wall_reach > 0:
                 pushed = against_walls(ctx.room, obj, ctx.config.wall_reach, ctx.rng)
+                # A kitchen unit then joins the run beside it (a no-op elsewhere).
+                joined = home.into_run(scene, pushed)
+                if joined is not pushed and self.fits(ctx, scene, joined, parent):
+                    return joined
                 if pushed is not obj and self.fits(ctx, scene, pushed, parent):
                     return pushed
             if self.fits(ctx, scene, obj, parent):
@@ -807,10 +822,10 @@ def _check_rules(config: SynthConfig) -> None:
     if unknown:
         raise SynthesisError(f'insertion cannot keep the design rule {quoted(min(unknown))}; '
                              f'it keeps {", ".join(INSERTION_RULES)}')
-    unknown = set(config.owed_partners) - set(groups.OWED_PARTNERS)
+    unknown = set(config.owed_partners) - set(OWED_RULES)
     if unknown:
         raise SynthesisError(f'no partner can be owed for the rule {quoted(min(unknown))}; '
-                             f'the rules that owe one are {", ".join(groups.OWED_PARTNERS)}')
+                             f'the rules that owe one are {", ".join(OWED_RULES)}')
 
 
 def _first_tier_key(scene: Scene) -> tuple:

@@ -176,18 +176,21 @@ class SynthConfig:
         Robot(), 'the robot every room is furnished for (the node and the command line set '
         'it with robot_radius, robot_reach and robot_clearance)')
     # A departure from the paper: the networks leave windows and the fronts of storage and
-    # fixtures less clear, wall furniture off its wall, baths out of corners and pieces of a
-    # group further from their partners than the training rooms do.
+    # fixtures less clear, wall furniture off its wall, baths out of corners, pieces of a
+    # group further from their partners, a kitchen's sink, stove and fridge further apart
+    # and a hallway's path narrower than the training rooms do.
     insertion_rules: tuple[str, ...] = setting(
         ('windows_clear', 'storage_clearance', 'wall_contact', 'fixture_clearance',
          'bath_in_corner', 'chair_at_table', 'nightstand_by_bed', 'bidet_by_toilet',
-         'coffee_table_has_seating'),
+         'coffee_table_has_seating', 'work_triangle', 'fronts_open', 'dining_seats',
+         'hallway_path'),
         'the design rules insertion keeps (names of rules.insertion.INSERTION_RULES)')
     # A departure from the paper, as the rules kept at insertion are.
     owed_partners: tuple[str, ...] = setting(
-        ('coffee_table_has_seating', 'double_bed_has_nightstand'),
-        'group rules whose broken cases get one more draw among their partners when the '
-        'category module says STOP (names of rules.groups.OWED_PARTNERS)')
+        ('coffee_table_has_seating', 'double_bed_has_nightstand', 'work_triangle'),
+        'rules whose broken cases get one more draw among their partners when the category '
+        'module says STOP (names of rules.insertion.OWED_RULES; work_triangle: a kitchen '
+        'without its sink, stove or fridge)')
     device: str = setting('cpu', 'torch device for the networks', choices=DEVICES,
                           node=True, flag='--device')
     runtime: str = setting(

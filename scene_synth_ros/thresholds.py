@@ -130,6 +130,9 @@ TRIANGLE_LEG = (1.2, 2.7)
 TRIANGLE_TOTAL = 7.9
 KITCHEN_AISLE = 1.0
 RUN_GAP = 0.05          # m between two units of one counter run
+# m: how far a new unit's side may be from a neighbouring unit's for synthesis to slide it
+# there (``rules.home.into_run``): about three of a kitchen image's pixels.
+RUN_SNAP = 0.3
 DOOR_SWING = 0.6        # m an appliance's or cabinet's door or flap needs before its front
 # Dining: a chair needs 0.3 m behind it to be pulled out, and the table 0.75 m on a side
 # where people sit (chair and pull-out; planning guides ask 0.75-0.9 m).

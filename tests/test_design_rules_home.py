@@ -3,9 +3,11 @@ kept and broken, exactly counted; and the corpus's rooms of those types keeping 
 import math
 
 import pytest
+from shapely.geometry import Point
 
 from scene_synth_ros import rules
-from scene_synth_ros.corpus.generate import generate_room
+from scene_synth_ros.corpus import HELDOUT_SEED
+from scene_synth_ros.corpus.generate import empty_room, generate_room
 from scene_synth_ros.rules import home
 from scene_synth_ros.scene import Opening, PlacedObject, Room, Scene
 
@@ -134,3 +136,122 @@ def test_corpus_rooms_of_a_home_hold_their_essentials(room_type):
     if room_type == 'hallway':
         assert all(home.hallway_path(s)[0] == home.hallway_path(s)[1] for s in scenes)
         assert sum(len(s.objects) for s in scenes) >= 8
+
+
+# ---- kept at insertion ----------------------------------------------------------------------
+def test_each_triangle_corner_is_judged_against_the_corners_already_there():
+    sink = put('kitchen sink', 0.8, 0.3, 90, name='sink')
+    k = room('kitchen')
+    assert home.triangle_verdicts(Scene(k, [sink])) == {'sink': True}
+    close = put('stove', 1.5, 0.3, 90, name='stove')           # 0.7 m from the sink
+    assert home.triangle_verdicts(Scene(k, [sink, close])) == {'sink': False, 'stove': False}
+    scene = kitchen_run(2.7, fridge_xy=(2.2, 2.0), fridge_yaw=-90)
+    assert home.work_triangle(scene) == (1, 1)
+    assert all(home.triangle_verdicts(scene).values())
+    # a second fridge out of reach is judged alone; the kept corners stay kept
+    far = Scene(k, scene.objects + [put('fridge', 3.6, 3.6, 180, name='far')])
+    v = home.triangle_verdicts(far)
+    assert v['far'] is False and v['sink'] and v['stove'] and v['fridge']
+    assert home.triangle_verdicts(Scene(room('dining'), scene.objects)) == {}
+
+
+def test_a_kitchen_is_owed_the_corners_it_lacks():
+    scene = kitchen_run(2.7)
+    assert home.owed_corners(scene) == ()
+    no_stove = Scene(scene.room, [o for o in scene.objects if o.category != 'stove'])
+    assert home.owed_corners(no_stove) == ('stove',)
+    assert home.owed_corners(Scene(room('kitchen'))) == ('kitchen sink', 'stove', 'fridge')
+    assert home.owed_corners(Scene(room('dining'), no_stove.objects)) == ()
+    from scene_synth_ros.rules.insertion import owed
+    assert owed(no_stove, ('work_triangle',)) == (1, frozenset({'stove'}))
+    assert owed(no_stove, ('coffee_table_has_seating',)) == (0, frozenset())
+
+
+def test_the_triangle_zone_is_the_rings_of_the_corners_there():
+    sink = put('kitchen sink', 2.0, 0.3, 90, name='sink')
+    k = room('kitchen')
+    assert home.partner_zone(Scene(k), 'work_triangle', 'stove') is None
+    assert home.partner_zone(Scene(k, [sink]), 'work_triangle', 'counter') is None
+    zone = home.partner_zone(Scene(k, [sink]), 'work_triangle', 'stove')
+    for d, inside in ((0.8, False), (1.5, True), (2.5, True), (3.0, False)):
+        assert zone.contains(Point(2.0, 0.3 + d)) == inside, d
+    stove = put('stove', 3.5, 0.3, 90, name='stove')
+    lens = home.partner_zone(Scene(k, [sink, stove]), 'work_triangle', 'fridge')
+    assert lens.contains(Point(2.75, 1.9)) and not lens.contains(Point(0.5, 1.9))
+
+
+def test_a_seat_is_drawn_only_within_reach_of_what_it_sits_at():
+    scene = dining(0.05, 0.4)
+    table, chair = scene.objects
+    assert home.partner_zone(Scene(scene.room), 'dining_seats', 'dining chair').is_empty
+    zone = home.partner_zone(Scene(scene.room, [table]), 'dining_seats', 'dining chair')
+    assert zone.contains(Point(chair.position[:2]))
+    assert not zone.contains(Point(table.position[:2]))        # not on the table
+    assert home.partner_zone(Scene(scene.room, [table]), 'dining_seats', 'sideboard') is None
+
+
+def test_a_unit_near_a_run_is_slid_to_join_it():
+    scene = kitchen_run(2.7)
+    sink = scene.objects[0]
+    near = PlacedObject('new', 'counter', 'counter_00', (0.8 + 0.4 + 0.6 + 0.15, 0.3, 0.0),
+                        math.radians(90), SIZES['counter'])
+    alone = Scene(scene.room, [sink])
+    joined = home.into_run(alone, near)
+    assert joined is not near and home.joins_run(joined, sink)
+    assert math.isclose(joined.position[1], near.position[1])     # slid along the wall only
+    far = PlacedObject('new', 'counter', 'counter_00', (0.8 + 0.4 + 0.6 + 0.6, 0.3, 0.0),
+                       math.radians(90), SIZES['counter'])
+    assert home.into_run(alone, far) is far
+    assert home.into_run(Scene(room('dining'), [sink]), near) is near
+    fridge = put('fridge', 2.0, 0.35, 90)
+    assert home.into_run(alone, fridge) is fridge                  # not a unit of a run
+
+
+@pytest.mark.parametrize('room_type', ['kitchen', 'dining'])
+def test_the_home_rules_insertion_asks_of_a_new_piece_answer_as_the_full_rule(room_type):
+    # As tests/test_synth.py's test for the paper's rules: every case not asked keeps its
+    # verdict, and those asked get the full answer, in corpus rooms and rooms furnished
+    # without the rules kept, each first-tier piece added last.
+    from scene_synth_ros.rules.insertion import INSERTION_RULES
+    from scene_synth_ros.synth import SynthConfig, Synthesizer
+    loose = Synthesizer(config=SynthConfig(insertion_rules=()))
+    asked = 0
+    for i in range(4):
+        rooms = (generate_room(room_type, 1, i),
+                 loose.generate(empty_room(room_type, 1, i), seed=i).scene)
+        for scene, new in ((s, o) for s in rooms for o in s.first_tier):
+            rest = [o for o in scene.objects if o is not new]
+            before, after = Scene(scene.room, rest), Scene(scene.room, rest + [new])
+            for name in ('fronts_open', 'dining_seats'):
+                verdicts = INSERTION_RULES[name]
+                full, then = verdicts(after), verdicts(before)
+                part = verdicts(after, new=new)
+                assert part == {case: full[case] for case in part}, (i, name, new.id)
+                assert all(then[case] == ok for case, ok in full.items() if case not in part)
+                asked += len(part)
+    assert asked > 0
+
+
+def test_synthesized_rooms_of_a_home_keep_the_rules_kept_at_insertion():
+    from scene_synth_ros.synth import Synthesizer
+    synth = Synthesizer()
+    for room_type in ('kitchen', 'dining', 'hallway'):
+        for i in range(3):
+            scene = synth.generate(empty_room(room_type, HELDOUT_SEED, i), seed=i).scene
+            for measure in (home.fronts_open, home.dining_seats, home.hallway_path):
+                kept, cases = measure(scene)
+                assert kept == cases, (room_type, i, measure.__name__)
+            assert all(home.triangle_verdicts(scene).values()), (room_type, i)
+
+
+def test_a_hallway_too_narrow_for_any_furniture_is_furnished_empty():
+    from scene_synth_ros.synth import SynthesisError, Synthesizer, check_room_fits
+    doors = (Opening('door', (0.0, 0.45), 0.8, 2.0, 0.0),
+             Opening('door', (1.3, 0.45), 0.8, 2.0, 0.0))
+    shape = ((0, 0), (1.3, 0), (1.3, 0.9), (0, 0.9))
+    with pytest.raises(SynthesisError, match='too small or narrow'):
+        check_room_fits(Room('bathroom', shape, 2.6, doors))
+    narrow = Room('hallway', shape, 2.6, doors)
+    check_room_fits(narrow)                     # no sentence: a passage may hold nothing
+    result = Synthesizer().generate(narrow, seed=0)
+    assert result.scene.objects == [] and result.robot.kept

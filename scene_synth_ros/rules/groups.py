@@ -67,7 +67,7 @@ import numpy as np
 import shapely
 from shapely.geometry import LineString, Polygon
 
-from ..categories import CATEGORIES, PAPER, Vocabulary, members
+from ..categories import CATEGORIES, PAPER, CategoryInfo, Vocabulary, members
 from ..geometry import local_box, local_xy, nearest_point, within_reach
 from ..scene import PlacedObject, Scene, wrap_angle
 from ..thresholds import (
@@ -251,10 +251,15 @@ def partner_zone(scene: Scene, rule: str, category: str, vocabulary: Vocabulary 
         if not partners:
             return None
         boxes = [t.footprint().buffer(LOUNGE_REACH + m, join_style='mitre') for t in partners]
+    return zone_beside(boxes, partners, info)
+
+
+def zone_beside(boxes: list, partners: list[PlacedObject], info: CategoryInfo):
+    """The union of ``boxes`` (empty without any) less the partners, each grown by the least
+    half-extent of ``info``'s sizes: a centre closer to a partner than that would put the two
+    through each other."""
     if not boxes:
         return Polygon()
-    # Nor on the partner: a centre closer to it than the piece's least half-extent would put
-    # the two through each other.
     inner = min(info.width[0], info.depth[0]) / 2
     return shapely.union_all(boxes).difference(shapely.union_all(
         [p.footprint().buffer(inner, join_style='mitre') for p in partners]))

@@ -27,15 +27,24 @@ is floor clear of every other first-tier piece.
 ``hallway_path``: the case is a hallway with two doors or more; it keeps the rule when a
 path ``HALLWAY_PATH`` (0.9 m) wide joins every door to every other through its furniture
 (a disc of that diameter drives between them: ``robot.state``).
+
+Synthesis keeps all but ``counter_run`` at insertion (``rules.insertion``), in the form a room
+being furnished can be judged: a sink, stove or fridge must make a working triangle with
+those of the other two kinds already there (``triangle_verdicts``), and a kitchen that stops
+without one of the three is owed it (``owed_corners``); a piece's front, a seat's pull-out
+strip and a hallway's path must stay clear; and the pieces of a triangle and the seats are
+drawn only where their partners leave them room (``partner_zone``). Counter units are slid
+along their wall to join a neighbouring unit (``into_run``) rather than refused.
 """
 from __future__ import annotations
 
 import itertools
 import math
 
-from shapely.geometry import Polygon
+import shapely
+from shapely.geometry import Point, Polygon
 
-from ..categories import members
+from ..categories import CATEGORIES, PAPER, Vocabulary, members
 from ..geometry import local_box, local_xy
 from ..scene import PlacedObject, Scene
 from ..thresholds import (
@@ -43,14 +52,21 @@ from ..thresholds import (
     HALLWAY_PATH,
     PULL_OUT,
     RUN_GAP,
+    RUN_SNAP,
+    SEAT_REACH,
     TRIANGLE_LEG,
     TRIANGLE_TOTAL,
 )
 from . import robot
-from .groups import on_one_line, seated_at
-from .rule import Outcome, Rule
+from .groups import on_one_line, seated_at, zone_beside
+from .rule import Outcome, Rule, category_of
 
 SINKS, STOVES, FRIDGES = (('kitchen sink',), ('stove',), ('fridge',))
+TRIANGLE_KINDS = (SINKS, STOVES, FRIDGES)
+# Every kitchen has a sink and a stove (``home_tables.KITCHEN_REFERENCE``) and a fridge (146
+# of ProcTHOR's 147 kitchens): a kitchen that stops without one of them is owed it, as a
+# coffee table is owed seating (``owed_corners``).
+KITCHEN_ESSENTIALS = SINKS + STOVES + FRIDGES
 RUN_UNITS = members('counter run')
 DOOR_FRONTS = members('door front')
 DINING_SEATS = members('dining seat')
@@ -70,12 +86,19 @@ def _clear(scene: Scene, strip: Polygon, owner: PlacedObject) -> bool:
                    for o in scene.first_tier)
 
 
-def triangle_ok(sink: PlacedObject, stove: PlacedObject, fridge: PlacedObject) -> bool:
-    """Whether the three make a working triangle (see ``work_triangle``)."""
+def corners_ok(pieces) -> bool:
+    """Whether ``pieces``, at most one of each kind of ``TRIANGLE_KINDS``, stand as corners
+    of a working triangle: every leg between them ``TRIANGLE_LEG`` long, and the three legs
+    together at most ``TRIANGLE_TOTAL`` (see ``work_triangle``)."""
     lo, hi = TRIANGLE_LEG
     legs = [math.dist(a.position[:2], b.position[:2])
-            for a, b in ((sink, stove), (stove, fridge), (fridge, sink))]
-    return all(lo <= leg <= hi for leg in legs) and sum(legs) <= TRIANGLE_TOTAL
+            for a, b in itertools.combinations(pieces, 2)]
+    return all(lo <= leg <= hi for leg in legs) and (len(legs) < 3 or sum(legs) <= TRIANGLE_TOTAL)
+
+
+def triangle_ok(sink: PlacedObject, stove: PlacedObject, fridge: PlacedObject) -> bool:
+    """Whether the three make a working triangle (see ``work_triangle``)."""
+    return corners_ok((sink, stove, fridge))
 
 
 def work_triangle(scene: Scene) -> Outcome:
@@ -85,6 +108,30 @@ def work_triangle(scene: Scene) -> Outcome:
     if not any(trio):
         return 0, 0
     return int(any(triangle_ok(*t) for t in itertools.product(*trio))), 1
+
+
+def triangle_verdicts(scene: Scene) -> dict[str, bool]:
+    """Whether each sink, stove and fridge of a kitchen (by id) makes a working triangle with
+    one of each other kind the room holds so far (``corners_ok``): what insertion keeps, so
+    that a kitchen that gets all three has them within reach of each other."""
+    if scene.room.room_type != 'kitchen':
+        return {}
+    kinds = [_first_tier(scene, c) for c in TRIANGLE_KINDS]
+    out = {}
+    for k, own in enumerate(kinds):
+        others = [kind for j, kind in enumerate(kinds) if j != k and kind]
+        for piece in own:
+            out[piece.id] = any(corners_ok((piece, *combo))
+                                for combo in itertools.product(*others))
+    return out
+
+
+def owed_corners(scene: Scene) -> tuple[str, ...]:
+    """The essentials a kitchen still lacks (``KITCHEN_ESSENTIALS``, the work triangle's
+    corners)."""
+    if scene.room.room_type != 'kitchen':
+        return ()
+    return tuple(c for c in KITCHEN_ESSENTIALS if not _first_tier(scene, (c,)))
 
 
 def joins_run(unit: PlacedObject, other: PlacedObject) -> bool:
@@ -107,10 +154,52 @@ def counter_run(scene: Scene) -> Outcome:
     return sum(v.values()), len(v)
 
 
-def front_verdicts(scene: Scene) -> dict[str, bool]:
-    return {o.id: _clear(scene, local_box(o, o.depth / 2, o.depth / 2 + DOOR_SWING,
-                                     -o.width / 2, o.width / 2), o)
-            for o in _first_tier(scene, DOOR_FRONTS)}
+def into_run(scene: Scene, unit: PlacedObject) -> PlacedObject:
+    """``unit``, a new kitchen unit, slid sideways to stand beside the nearest unit on its
+    line (``on_one_line``) whose side is at most ``RUN_SNAP`` away, leaving a gap of half
+    ``RUN_GAP``; ``unit`` itself where none is. The location module sees a kitchen at about
+    9 cm a pixel, so a unit meant to join a run lands a few centimetres off it, or into it."""
+    if scene.room.room_type != 'kitchen' or unit.category not in RUN_UNITS:
+        return unit
+    best = None
+    for other in _first_tier(scene, RUN_UNITS):
+        if not on_one_line(unit, other):
+            continue
+        x, y = local_xy(other, unit.position)
+        side = (other.width + unit.width) / 2 + RUN_GAP / 2
+        gap = abs(y) - side
+        if abs(gap) <= RUN_SNAP and (best is None or abs(gap) < abs(best[0])):
+            best = (gap, other, math.copysign(side, y) - y)
+    if best is None:
+        return unit
+    _, other, shift = best
+    c, s = math.cos(other.yaw), math.sin(other.yaw)
+    # Along the other unit's width: its local y axis.
+    px, py = unit.position[0] - s * shift, unit.position[1] + c * shift
+    return PlacedObject(unit.id, unit.category, unit.model_id, (px, py, unit.position[2]),
+                        unit.yaw, unit.size, unit.support)
+
+
+def _entered(new: PlacedObject | None, owner: PlacedObject, strip: Polygon) -> bool:
+    """Whether a verdict on ``owner``'s ``strip`` can have changed with ``new`` added: it is
+    ``owner``, or it enters the strip (``new`` None: every verdict counts)."""
+    return new is None or new.id == owner.id or new.footprint().intersects(strip)
+
+
+def _front(o: PlacedObject) -> Polygon:
+    return local_box(o, o.depth / 2, o.depth / 2 + DOOR_SWING, -o.width / 2, o.width / 2)
+
+
+def front_verdicts(scene: Scene, new: PlacedObject | None = None) -> dict[str, bool]:
+    """Whether each piece with a door front (by id) keeps ``fronts_open``; with ``new`` (a
+    first-tier piece of ``scene`` just added), only those whose verdict it can have
+    changed: itself, and those whose front it enters."""
+    out = {}
+    for o in _first_tier(scene, DOOR_FRONTS):
+        strip = _front(o)
+        if _entered(new, o, strip):
+            out[o.id] = _clear(scene, strip, o)
+    return out
 
 
 def fronts_open(scene: Scene) -> Outcome:
@@ -118,15 +207,25 @@ def fronts_open(scene: Scene) -> Outcome:
     return sum(v.values()), len(v)
 
 
-def seat_verdicts(scene: Scene) -> dict[str, bool]:
-    surfaces = _first_tier(scene, DINING_SURFACES)
-    counters = _first_tier(scene, ('counter',))
+def _surfaces(scene: Scene, seat_category: str) -> list[PlacedObject]:
+    """What a seat of ``seat_category`` is seated at: a dining table or kitchen island, and
+    for a bar stool a counter too."""
+    return _first_tier(scene, DINING_SURFACES + (('counter',) if seat_category == 'bar stool'
+                                                 else ()))
+
+
+def seat_verdicts(scene: Scene, new: PlacedObject | None = None) -> dict[str, bool]:
+    """Whether each dining seat (by id) keeps ``dining_seats``; with ``new``, only those
+    whose verdict it can have changed: itself, those whose pull-out strip it enters, and
+    every seat where it is something to sit at."""
+    at = new is not None and (new.category in DINING_SURFACES or new.category == 'counter')
     out = {}
     for seat in _first_tier(scene, DINING_SEATS):
-        at = surfaces + (counters if seat.category == 'bar stool' else [])
         behind = local_box(seat, -seat.depth / 2 - PULL_OUT, -seat.depth / 2,
-                      -seat.width / 2, seat.width / 2)
-        out[seat.id] = any(seated_at(seat, t) for t in at) and _clear(scene, behind, seat)
+                           -seat.width / 2, seat.width / 2)
+        if at or _entered(new, seat, behind):
+            out[seat.id] = (any(seated_at(seat, t) for t in _surfaces(scene, seat.category))
+                            and _clear(scene, behind, seat))
     return out
 
 
@@ -138,10 +237,49 @@ def dining_seats(scene: Scene) -> Outcome:
 PATH_ROBOT = robot.Robot(radius=HALLWAY_PATH / 2)
 
 
-def hallway_path(scene: Scene) -> Outcome:
+# The rules kept at insertion whose pieces are drawn only where a partner leaves them room
+# (``partner_zone``), and those pieces.
+PARTNER_RULES: dict[str, tuple[str, ...]] = {
+    'work_triangle': SINKS + STOVES + FRIDGES,
+    'dining_seats': DINING_SEATS,
+}
+
+
+def partner_zone(scene: Scene, rule: str, category: str, vocabulary: Vocabulary = PAPER):
+    """As ``groups.partner_zone``, for the home rules of ``PARTNER_RULES``: a corner of the
+    work triangle within ``TRIANGLE_LEG`` of one piece of each other kind the kitchen holds
+    (anywhere while it holds none: the legs join centres, so the rings are the rule's own,
+    and a stove drawn beside the sink is drawn along the run instead), a seat within reach
+    of what it is seated at (generous by the seat's largest half-extent)."""
+    if category not in PARTNER_RULES.get(rule, ()):
+        return None
+    if rule == 'work_triangle':
+        if scene.room.room_type != 'kitchen':
+            return None
+        lo, hi = TRIANGLE_LEG
+        rings = [shapely.union_all([Point(o.position[:2]).buffer(hi).difference(
+                     Point(o.position[:2]).buffer(lo)) for o in kind])
+                 for kind in (_first_tier(scene, c) for c in TRIANGLE_KINDS
+                              if category not in c) if kind]
+        return shapely.intersection_all(rings) if rings else None
+    info = category_of(category, scene.room.room_type, vocabulary) or CATEGORIES[category]
+    m = max(info.width[1], info.depth[1]) / 2
+    partners = _surfaces(scene, category)
+    return zone_beside([p.footprint().buffer(SEAT_REACH + m, join_style='mitre')
+                        for p in partners], partners, info)
+
+
+def path_verdicts(scene: Scene) -> dict[str, bool]:
+    """``hallway_path``'s one case, the room, with its verdict (none but in a hallway with
+    two doors or more)."""
     if scene.room.room_type != 'hallway' or len(scene.room.doors) < 2:
-        return 0, 0
-    return int(robot.state(scene, PATH_ROBOT).doors_connected), 1
+        return {}
+    return {'path': robot.state(scene, PATH_ROBOT).doors_connected}
+
+
+def hallway_path(scene: Scene) -> Outcome:
+    v = path_verdicts(scene)
+    return sum(v.values()), len(v)
 
 
 RULES = (

@@ -5,12 +5,12 @@ from __future__ import annotations
 
 from ..categories import PAPER, Vocabulary
 from ..scene import PlacedObject, Scene
-from . import access, groups, walls
+from . import access, groups, home, walls
 
 # Design rules insertion can keep: each gives, for a scene, whether each of its cases (a
 # window by its index, a piece of storage by its index among the first tier, a piece of a
-# group by its id) keeps the rule. The group rules also narrow where such a piece's location
-# is drawn (``groups.partner_zone``).
+# group by its id) keeps the rule. The group rules and some home rules also narrow where
+# such a piece's location is drawn (``partner_zone``).
 INSERTION_RULES = {'windows_clear': walls.window_verdicts,
                    'storage_clearance': access.storage_verdicts,
                    'wall_contact': walls.wall_contact_verdicts,
@@ -19,12 +19,17 @@ INSERTION_RULES = {'windows_clear': walls.window_verdicts,
                    'chair_at_table': groups.chair_verdicts,
                    'nightstand_by_bed': groups.nightstand_verdicts,
                    'bidet_by_toilet': groups.bidet_verdicts,
-                   'coffee_table_has_seating': groups.seating_verdicts}
+                   'coffee_table_has_seating': groups.seating_verdicts,
+                   'work_triangle': home.triangle_verdicts,
+                   'fronts_open': home.front_verdicts,
+                   'dining_seats': home.seat_verdicts,
+                   'hallway_path': home.path_verdicts}
 
 # Rules whose verdicts a new piece changes only where it enters a case's clear strip or zone:
 # insertion asks for those cases alone (the verdict functions' ``new``), the same answer for
 # less work.
-INCREMENTAL_RULES = frozenset({'windows_clear', 'storage_clearance', 'fixture_clearance'})
+INCREMENTAL_RULES = frozenset({'windows_clear', 'storage_clearance', 'fixture_clearance',
+                               'fronts_open', 'dining_seats'})
 
 # The only categories whose insertion can change a rule's verdicts (a rule not named here can
 # be changed by any piece): a chair's place at a table depends on chairs and tables alone,
@@ -36,6 +41,7 @@ RULE_CATEGORIES: dict[str, frozenset[str]] = {
     'nightstand_by_bed': frozenset(('stand',) + groups.BEDS_WITH_HEAD),
     'bidet_by_toilet': frozenset({'bidet', 'toilet'}),
     'coffee_table_has_seating': frozenset(('coffee table',) + groups.LOUNGE_SEATS),
+    'work_triangle': frozenset(home.PARTNER_RULES['work_triangle']),
 }
 
 
@@ -51,6 +57,31 @@ def rule_categories(rule: str, room_type: str, vocabulary: Vocabulary = PAPER
 
 # Rules whose verdicts read the room type's category set (which pieces stand against a wall).
 VOCABULARY_RULES = frozenset({'wall_contact'})
+
+
+# Rules whose broken cases get one more draw among their partners at a STOP
+# (``SynthConfig.owed_partners``): the group rules', and a kitchen's essentials.
+OWED_RULES = tuple(groups.OWED_PARTNERS) + ('work_triangle',)
+
+
+def owed(scene: Scene, rules) -> tuple[int, frozenset[str]]:
+    """How many cases of ``rules`` (names in ``OWED_RULES``) a finished ``scene`` still owes
+    a partner, and the categories that could mend them (``groups.owed``; for
+    ``work_triangle``, the kitchen's missing essentials: ``home.owed_corners``)."""
+    broken, partners = groups.owed(scene, [r for r in rules if r in groups.OWED_PARTNERS])
+    if 'work_triangle' in rules:
+        missing = home.owed_corners(scene)
+        broken, partners = broken + len(missing), partners | frozenset(missing)
+    return broken, partners
+
+
+def partner_zone(scene: Scene, rule: str, category: str, vocabulary: Vocabulary = PAPER):
+    """Where the centre of a new first-tier ``category`` piece can stand for ``rule`` to
+    hold for it (``groups.partner_zone``, ``home.partner_zone``); None where the rule asks
+    nothing of such a piece."""
+    if rule in home.PARTNER_RULES:
+        return home.partner_zone(scene, rule, category, vocabulary)
+    return groups.partner_zone(scene, rule, category, vocabulary)
 
 
 def verdicts(rule: str, scene: Scene, vocabulary: Vocabulary = PAPER,
