@@ -83,6 +83,7 @@ from .rules.insertion import (
     partner_zone,
     rule_categories,
     verdicts,
+    waived_when_owed,
 )
 from .rules.robot import RobotReport, RobotState
 from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
@@ -404,6 +405,15 @@ class Synthesizer:
                     if 0 < broken < owing:
                         owing = broken
                         obj, _ = self._insert_one(ctx, out, allow_stop=False, only=partners)
+                        waive = waived_when_owed(partners, cfg.insertion_rules)
+                        if obj is None and waive:
+                            # Then where the rules it need not keep would refuse it.
+                            kept, ctx.waived = ctx.waived, ctx.waived | waive
+                            try:
+                                obj, _ = self._insert_one(ctx, out, allow_stop=False,
+                                                          only=partners)
+                            finally:
+                                ctx.waived = kept
                 if obj is None:
                     stopped = why
                     break

@@ -8,7 +8,7 @@ import pytest
 import torch
 
 from scene_synth_ros import lockstep
-from scene_synth_ros.categories import ROOM_TYPES
+from scene_synth_ros.categories import PASSAGE_ROOM_TYPES, ROOM_TYPES
 from scene_synth_ros.corpus.generate import empty_room
 from scene_synth_ros.geometry import check_scene
 from scene_synth_ros.networks import NETWORKS
@@ -62,7 +62,7 @@ def test_synthesis_on_cuda_is_valid_and_reproducible():
         room = empty_room(rt, 100)
         a = synth.generate(room, seed=3).scene
         b = synth.generate(room, seed=3).scene
-        assert len(a.objects) >= 2, rt
+        assert len(a.objects) >= (1 if rt in PASSAGE_ROOM_TYPES else 2), rt   # a hall: 1-5
         assert check_scene(a).ok, (rt, check_scene(a).summary())
         assert [o.to_dict() for o in a.objects] == [o.to_dict() for o in b.objects], rt
 

@@ -241,7 +241,9 @@ def test_synthesized_rooms_of_a_home_keep_the_rules_kept_at_insertion():
             for measure in (home.fronts_open, home.dining_seats, home.hallway_path):
                 kept, cases = measure(scene)
                 assert kept == cases, (room_type, i, measure.__name__)
-            assert all(home.triangle_verdicts(scene).values()), (room_type, i)
+            # kept corner by corner, but for an owed corner placed where none kept it
+            assert (all(home.triangle_verdicts(scene).values())
+                    or not home.owed_corners(scene)), (room_type, i)
 
 
 def test_a_hallway_too_narrow_for_any_furniture_is_furnished_empty():
@@ -255,3 +257,17 @@ def test_a_hallway_too_narrow_for_any_furniture_is_furnished_empty():
     check_room_fits(narrow)                     # no sentence: a passage may hold nothing
     result = Synthesizer().generate(narrow, seed=0)
     assert result.scene.objects == [] and result.robot.kept
+
+
+def test_a_draw_owed_a_kitchens_essential_may_break_the_triangle_where_none_keeps_it():
+    from scene_synth_ros.rules.insertion import waived_when_owed
+    rules = ('work_triangle', 'chair_at_table')
+    assert waived_when_owed({'stove'}, rules) == {'work_triangle'}
+    assert waived_when_owed({'armchair', 'sofa'}, rules) == frozenset()
+    assert waived_when_owed({'stove'}, ('chair_at_table',)) == frozenset()
+    # so a synthesized kitchen lacks none of them where the floor has room
+    from scene_synth_ros.synth import Synthesizer
+    synth = Synthesizer()
+    scenes = [synth.generate(empty_room('kitchen', HELDOUT_SEED, i), seed=i).scene
+              for i in range(6)]
+    assert sum(not home.owed_corners(s) for s in scenes) >= 5

@@ -197,7 +197,7 @@ def test_a_completed_room_keeps_what_held_and_says_what_did_not(synth):
 
 # ---- every synthesized room, for robots of 0.15-0.4 m ---------------------------------------
 RADII = (0.15, 0.2, 0.25, 0.3, 0.35, 0.4)
-ROOMS_PER_TYPE = 100
+ROOMS_PER_TYPE = 60
 _synths: dict = {}                       # a worker's Synthesizer
 
 
@@ -229,7 +229,7 @@ def _synthesize_and_check(job):
 
 @pytest.mark.slow
 def test_hundreds_of_synthesized_rooms_keep_the_promise_checked_on_a_raster():
-    # 100 held-out shells per room type with the shipped weights, each for one robot of
+    # 60 held-out shells per room type with the shipped weights, each for one robot of
     # 0.15-0.4 m radius in turn; every furnished room must pass the independent raster check,
     # and a room refused as too narrow must be too narrow on the raster as well.
     jobs = [(rt, i) for rt in ROOM_TYPES for i in range(ROOMS_PER_TYPE)]

@@ -127,7 +127,7 @@ def test_bad_layouts_are_rejected_in_one_sentence_and_the_room_stays(server):
         'NaN': LAYOUT.replace('4.2, 0.0', 'NaN, 0.0', 1),
         'too small': json.dumps({'room_type': 'bedroom', 'floor': [[0, 0], [0.5, 0],
                                                                    [0.5, 0.5], [0, 0.5]]}),
-        'unknown room type': LAYOUT.replace('"bedroom"', '"kitchen"'),
+        'unknown room type': LAYOUT.replace('"bedroom"', '"garage"'),
         # 2 m² pass the schema, but two doors' clear zones cover the whole floor
         'no room for anything': json.dumps({
             'room_type': 'bathroom', 'floor': [[0, 0], [2.05, 0], [2.05, 1.0], [0, 1.0]],

@@ -102,7 +102,7 @@ class Source:
         own = [t for t in types if vocabulary.defines(t)]
         if own:
             raise BatchError(f'{own[0]} is a room type of the data set the weights were '
-                             f'trained on, and the corpus makes only the paper\'s rooms: '
+                             f'trained on, and the corpus makes only the package\'s own: '
                              f'give --layouts')
         return cls('shells', types)
 

@@ -185,7 +185,7 @@ def cmd_generate(args) -> int:
             raise UserError('generate furnishes one room: give one --room-type, not all')
         if synth.vocabulary.defines(rt[0]):
             raise UserError(f'{rt[0]} is a room type of the data set the weights were trained '
-                            f'on, and the corpus makes only the paper\'s rooms: give --layout')
+                            f'on, and the corpus makes only the package\'s own: give --layout')
         room = first_shell(rt[0], args.seed)
         title = f'{rt[0]} (seed {args.seed})'
     result = synth.generate(room, args.seed)
@@ -368,7 +368,7 @@ def _demo_jobs(per_type: int) -> list[tuple[str, str, object]]:
     from ..paths import examples_dir
     from ..scene import Scene
     jobs = []
-    for f in ('bedroom_layout.json', 'lshaped_living_layout.json'):
+    for f in ('bedroom_layout.json', 'lshaped_living_layout.json', 'kitchen_layout.json'):
         jobs.append((Path(f).stem, 'generate', load_scene_file(str(examples_dir() / f))))
     jobs.append(('partial_bedroom_completed', 'complete',
                  load_scene_file(str(examples_dir() / 'partial_bedroom.json'))))

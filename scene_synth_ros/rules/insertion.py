@@ -62,6 +62,17 @@ VOCABULARY_RULES = frozenset({'wall_contact'})
 # Rules whose broken cases get one more draw among their partners at a STOP
 # (``SynthConfig.owed_partners``): the group rules', and a kitchen's essentials.
 OWED_RULES = tuple(groups.OWED_PARTNERS) + ('work_triangle',)
+# Rules that a draw owed one of these categories at a STOP need not keep where it found no
+# place keeping them: a small kitchen whose walls leave no place 1.2 m from its sink is
+# better with its stove nearer than without one.
+WAIVED_WHEN_OWED = {'work_triangle': frozenset(home.KITCHEN_ESSENTIALS)}
+
+
+def waived_when_owed(partners, rules) -> frozenset[str]:
+    """The rules among ``rules`` that a draw owed ``partners`` may break where it found no
+    place keeping them (``WAIVED_WHEN_OWED``)."""
+    return frozenset(r for r, owed_to in WAIVED_WHEN_OWED.items()
+                     if r in rules and owed_to & set(partners))
 
 
 def owed(scene: Scene, rules) -> tuple[int, frozenset[str]]:
