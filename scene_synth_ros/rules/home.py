@@ -38,6 +38,7 @@ along their wall to join a neighbouring unit (``into_run``) rather than refused.
 """
 from __future__ import annotations
 
+from dataclasses import replace
 import itertools
 import math
 
@@ -165,7 +166,7 @@ def into_run(scene: Scene, unit: PlacedObject) -> PlacedObject:
     for other in _first_tier(scene, RUN_UNITS):
         if not on_one_line(unit, other):
             continue
-        x, y = local_xy(other, unit.position)
+        _, y = local_xy(other, unit.position)
         side = (other.width + unit.width) / 2 + RUN_GAP / 2
         gap = abs(y) - side
         if abs(gap) <= RUN_SNAP and (best is None or abs(gap) < abs(best[0])):
@@ -175,9 +176,8 @@ def into_run(scene: Scene, unit: PlacedObject) -> PlacedObject:
     _, other, shift = best
     c, s = math.cos(other.yaw), math.sin(other.yaw)
     # Along the other unit's width: its local y axis.
-    px, py = unit.position[0] - s * shift, unit.position[1] + c * shift
-    return PlacedObject(unit.id, unit.category, unit.model_id, (px, py, unit.position[2]),
-                        unit.yaw, unit.size, unit.support)
+    x, y, z = unit.position
+    return replace(unit, position=(x - s * shift, y + c * shift, z))
 
 
 def _entered(new: PlacedObject | None, owner: PlacedObject, strip: Polygon) -> bool:
