@@ -16,9 +16,11 @@ import numpy as np
 import shapely
 from shapely.geometry import Point, Polygon
 
+from .allowance import STRICT, Allowance
 from .scene import Opening, PlacedObject, Room, Scene, box_corners
 from .thresholds import (
     COLLISION_TOLERANCE,
+    DOOR_ZONE_LEAST_DEPTH,
     DOOR_ZONE_MIN_DEPTH,
     DOOR_ZONE_SIDE_MARGIN,
     FLOOR_TOLERANCE,
@@ -27,12 +29,15 @@ from .thresholds import (
 )
 
 
-def door_zone(room: Room, door: Opening) -> Polygon:
-    """The area inside a door that must stay clear: the door's swing and a step beyond it."""
+def door_zone(room: Room, door: Opening, allowance: Allowance = STRICT) -> Polygon:
+    """The area inside a door that must stay clear: the door's swing and a step beyond it
+    (no deeper than the ``allowance``'s ``door_depth``)."""
     wall = room.wall_of(door)
     if wall is None:
         raise ValueError(f'the door at {door.position} is not on a wall of the room')
     depth = max(DOOR_ZONE_MIN_DEPTH, door.width + 0.1)
+    if allowance.door_depth is not None:
+        depth = max(min(depth, allowance.door_depth), DOOR_ZONE_LEAST_DEPTH)
     half = door.width / 2 + DOOR_ZONE_SIDE_MARGIN
     centre = np.asarray(door.position) + wall.normal * depth / 2
     return Polygon(box_corners(centre[0], centre[1], wall.inward_yaw, 2 * half, depth))
@@ -58,15 +63,42 @@ def enters_zone(obj: PlacedObject, zone: Polygon, tol: float = COLLISION_TOLERAN
     return zone.intersects(obj.footprint(tol))
 
 
-def collisions(scene: Scene, tol: float = COLLISION_TOLERANCE) -> list[tuple[str, str]]:
-    """Pairs of first-tier objects that interpenetrate by more than ``tol``."""
+def heights_overlap(a: PlacedObject, b: PlacedObject, tol: float = COLLISION_TOLERANCE) -> bool:
+    """Whether the heights of ``a`` and ``b`` overlap by more than ``tol``: a picture hung
+    above a bed does not collide with it."""
+    return (min(a.top, b.top) - max(a.position[2], b.position[2])) > tol
+
+
+def overlap_depth(a: PlacedObject, b: PlacedObject) -> float:
+    """How deep two footprints overlap: the shorter side of the smallest rectangle around
+    their intersection (a chair's seat pushed 0.3 m under a table's edge: 0.3)."""
+    common = a.footprint().intersection(b.footprint())
+    if common.is_empty or common.area <= 0:
+        return 0.0
+    ring = np.asarray(common.minimum_rotated_rectangle.exterior.coords)
+    sides = np.hypot(*np.diff(ring[:3], axis=0).T)
+    return float(sides.min())
+
+
+def collisions(scene: Scene, tol: float = COLLISION_TOLERANCE,
+               allowance: Allowance = STRICT) -> list[tuple[str, str]]:
+    """Pairs of first-tier objects that interpenetrate by more than ``tol``, at heights that
+    overlap, except pairs the ``allowance`` lets one tuck under the other that far."""
     objs = scene.first_tier
     shrunk = [o.footprint(tol / 2) for o in objs]
     if len(shrunk) < 2:
         return []
     tree = shapely.STRtree(shrunk)
     a, b = tree.query(shrunk, predicate='intersects')
-    return sorted({(objs[i].id, objs[j].id) for i, j in zip(a, b, strict=True) if i < j})
+    out = set()
+    for i, j in zip(a, b, strict=True):
+        if i >= j or not heights_overlap(objs[i], objs[j], tol):
+            continue
+        allowed = allowance.tuck_depth(objs[i].category, objs[j].category)
+        if allowed and overlap_depth(objs[i], objs[j]) <= allowed + tol:
+            continue
+        out.add((objs[i].id, objs[j].id))
+    return sorted(out)
 
 
 def off_floor(scene: Scene, tol: float = FLOOR_TOLERANCE) -> list[str]:
@@ -75,11 +107,37 @@ def off_floor(scene: Scene, tol: float = FLOOR_TOLERANCE) -> list[str]:
     return [o.id for o in scene.objects if not floor.covers(o.footprint())]
 
 
-def blocked_doors(scene: Scene, tol: float = COLLISION_TOLERANCE) -> list[int]:
-    """Indices of doors whose clear zone a first-tier object enters by more than ``tol``."""
+def door_swing(room: Room, door: Opening) -> Polygon:
+    """Where the door's leaf swings: a square of the door's width inside it."""
+    wall = room.wall_of(door)
+    if wall is None:
+        raise ValueError(f'the door at {door.position} is not on a wall of the room')
+    centre = np.asarray(door.position) + wall.normal * door.width / 2
+    return Polygon(box_corners(centre[0], centre[1], wall.inward_yaw, door.width, door.width))
+
+
+def raised(obj: PlacedObject, tol: float = FLOOR_TOLERANCE) -> bool:
+    """Whether a first-tier object hangs above the floor (a picture, a wall cabinet)."""
+    return obj.position[2] > tol
+
+
+def blocks_door(room: Room, door: Opening, obj: PlacedObject,
+                tol: float = COLLISION_TOLERANCE, allowance: Allowance = STRICT) -> bool:
+    """Whether first-tier ``obj`` stands in ``door``'s way: on the floor, in its clear zone;
+    hung on the wall, in its leaf's swing below the door's top (a picture beside a door, or
+    above it, leaves it free)."""
+    if not raised(obj):
+        return enters_zone(obj, door_zone(room, door, allowance), tol)
+    return obj.position[2] < door.height - tol and enters_zone(obj, door_swing(room, door), tol)
+
+
+def blocked_doors(scene: Scene, tol: float = COLLISION_TOLERANCE,
+                  allowance: Allowance = STRICT) -> list[int]:
+    """Indices of doors that a first-tier object blocks (``blocks_door``) by more than
+    ``tol``."""
     first = scene.first_tier
     return [k for k, door in enumerate(scene.room.doors)
-            if any(enters_zone(o, door_zone(scene.room, door), tol) for o in first)]
+            if any(blocks_door(scene.room, door, o, tol, allowance) for o in first)]
 
 
 def support_fraction(child: PlacedObject, parent: PlacedObject) -> float:
@@ -87,13 +145,28 @@ def support_fraction(child: PlacedObject, parent: PlacedObject) -> float:
     return fp.intersection(parent.footprint()).area / fp.area
 
 
-def under_supported(scene: Scene, minimum: float = MIN_SUPPORT) -> list[str]:
-    """Second-tier objects less than ``minimum`` on their parent, or not on its top."""
+def rests_on(child: PlacedObject, parent: PlacedObject, allowance: Allowance = STRICT,
+             tol: float = 0.01) -> bool:
+    """Whether ``child``'s base is where ``parent`` holds things: its top (up to the
+    allowance's ``settle`` above it), or inside it no lower than the allowance lets that
+    category hold them."""
+    base = child.position[2]
+    if -tol <= base - parent.top <= tol + allowance.settle:
+        return True
+    low = allowance.lowest_inside(parent.category)
+    return (low is not None
+            and parent.position[2] + low * parent.size[2] - tol <= base < parent.top)
+
+
+def under_supported(scene: Scene, minimum: float = MIN_SUPPORT,
+                    allowance: Allowance = STRICT) -> list[str]:
+    """Second-tier objects less than ``minimum`` on their parent, or not resting on it
+    (``rests_on``)."""
     by_id = {o.id: o for o in scene.objects}
     out = []
     for o in scene.second_tier:
         parent = by_id.get(o.support)
-        if (parent is None or abs(o.position[2] - parent.top) > 0.01
+        if (parent is None or not rests_on(o, parent, allowance)
                 or support_fraction(o, parent) < minimum):
             out.append(o.id)
     return out
@@ -179,9 +252,12 @@ class ValidityReport:
         return '; '.join(parts)
 
 
-def check_scene(scene: Scene) -> ValidityReport:
-    return ValidityReport(collisions(scene), off_floor(scene), blocked_doors(scene),
-                          under_supported(scene), doors_connected(scene))
+def check_scene(scene: Scene, allowance: Allowance = STRICT) -> ValidityReport:
+    """Every check, with what ``allowance`` lets a room do (``allowance.STRICT``: nothing)."""
+    return ValidityReport(collisions(scene, allowance=allowance), off_floor(scene),
+                          blocked_doors(scene, allowance=allowance),
+                          under_supported(scene, allowance=allowance),
+                          doors_connected(scene))
 
 
 # ---- footprints as exact boxes --------------------------------------------------------

@@ -15,6 +15,18 @@ MIN_SUPPORT = 0.70              # a second-tier footprint must be >= 70 % on its
 DOOR_ZONE_MIN_DEPTH = 0.80      # clear zone inside a door: at least this deep...
 DOOR_ZONE_SIDE_MARGIN = 0.10    # ...and this much wider than the door on each side
 
+# ---- the robot (``rules.robot.Robot``'s defaults) -------------------------------------
+# The robot every room is furnished and judged for unless a user names another: it must get
+# from every door to every door (the validity check) and reach every object's front.
+ROBOT_RADIUS = 0.2
+ROBOT_WIDTH = 2 * ROBOT_RADIUS
+# The robot reaches an object when its body gets within 0.15 m of it: close enough to look at
+# or grasp what is there, without asking for a free corridor wider than the robot.
+ROBOT_REACH = 0.15
+# A door's clear zone is never shallower than a robot standing just inside it needs
+# (``geometry.door_entry_point``, 0.1 m in), whatever a data set's allowance says.
+DOOR_ZONE_LEAST_DEPTH = ROBOT_WIDTH + 0.1
+
 # ---- what a layout must be to be furnished (``schema``) --------------------------------
 MIN_FLOOR_AREA = 2.0            # m^2: a smaller floor is degenerate, not a room
 # m along a room's longer side, in its own axes (``render.room_frame_box``): the longest
@@ -25,15 +37,6 @@ WALL_HEIGHT_RANGE = (1.8, 6.0)  # m, inclusive (also in room_layout.schema.json)
 OPENING_TOLERANCE = 0.01        # m: an opening's centre and ends may miss its wall by this
 CENTRE_OFF_FLOOR = 0.01         # m: an object's centre may lie this far outside the floor
 SIZE_SLACK = 0.5                # a size within its category's ranges widened by half
-
-# ---- the robot (``rules.robot.Robot``'s defaults) -------------------------------------
-# The robot every room is furnished and judged for unless a user names another: it must get
-# from every door to every door (the validity check) and reach every object's front.
-ROBOT_RADIUS = 0.2
-ROBOT_WIDTH = 2 * ROBOT_RADIUS
-# The robot reaches an object when its body gets within 0.15 m of it: close enough to look at
-# or grasp what is there, without asking for a free corridor wider than the robot.
-ROBOT_REACH = 0.15
 
 # ---- walls and windows (``rules.walls``) ----------------------------------------------
 # A back within 10 cm of the wall reads as against it: skirting boards, sockets and cables

@@ -24,6 +24,11 @@ windows per room; and per category:
   ``per_room``; ``importance_order`` lists the categories by it, as
   ``RoomTypeSpec.importance_order`` does.
 
+Beside the room types, ``allowance``: what the data set's rooms do that the strict validity
+checks refuse (chairs tucked under tables, things inside shelves; ``allowance.Allowance``,
+derived at import by ``datasets.allowance``); the evaluation holds the data set's rooms, real
+and synthesized, to it.
+
 This carries what ``categories.RoomTypeSpec`` / ``CategoryInfo`` hold (room count, size
 cap, doors and windows per room, per category its count, frequency, tier, size ranges,
 parents, against-wall flag, roles and importance). ``load`` reads a (possibly edited) file back
@@ -41,6 +46,7 @@ import numpy as np
 from shapely.geometry import LineString, Point, Polygon
 import yaml
 
+from ..allowance import STRICT, Allowance
 from ..categories import ROLES, ROOM_SIZE_CAP, roles_of
 from ..errors import DatasetError, quoted
 from ..files import write_atomic
@@ -220,7 +226,8 @@ HEADER = """\
 # rooms_with, tier (first: on the floor, second: on another object, mounted: neither),
 # supported_by (second tier: parent category -> objects), against_wall, width / depth /
 # height (min, median, max in metres; width across the front, depth back to front) and
-# importance (mean footprint of the size range x per_room). Edit freely (merge or drop
+# importance (mean footprint of the size range x per_room); then the allowance (what these
+# rooms do that the strict validity checks refuse: tucks, inside, settle, door_depth). Edit freely (merge or drop
 # categories, fix a tier); `scene_synth_ros.datasets.description.load` checks the result.
 """
 
@@ -266,6 +273,7 @@ class RoomTypeDescription:
 class DatasetDescription:
     format: str
     room_types: dict[str, RoomTypeDescription]
+    allowance: Allowance = STRICT
 
 
 def load(path: str | Path) -> DatasetDescription:
@@ -290,9 +298,12 @@ def check(data: Any, name: str = 'the description') -> DatasetDescription:
     types = data.get('room_types')
     _need(isinstance(types, dict) and types,
           f'{name}: room_types must map at least one room type to its description')
+    allowance = data.get('allowance')
     return DatasetDescription(str(data.get('format', '')),
                               {str(rt): _check_type(str(rt), d, name)
-                               for rt, d in types.items()})
+                               for rt, d in types.items()},
+                              STRICT if allowance is None
+                              else Allowance.from_dict(allowance, f'{name}: allowance'))
 
 
 def _need(ok: bool, message: str) -> None:

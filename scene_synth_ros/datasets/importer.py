@@ -17,8 +17,9 @@ from typing import Any, Iterator, Sequence
 
 from ..errors import DatasetError
 from ..files import write_atomic
+from ..scene import Scene
 from ..schema import format_json
-from . import description, front3d, procthor, suncg
+from . import allowance, description, front3d, procthor, suncg
 from .assemble import assemble
 from .config import FORMATS, ImportConfig, load_room_types
 from .models import AssetBoxes, ModelBoxes, ModelCategories
@@ -102,6 +103,7 @@ def import_dataset(fmt: str, inputs: Sequence[str | Path], out: str | Path | Non
     report = ImportReport(fmt, [str(f) for f in files])
     result = ImportResult(report=report)
     describer = description.Describer(fmt, config)
+    deriver = allowance.Deriver()
     names: set[str] = set()
     if out is not None:
         out = Path(out)
@@ -113,11 +115,12 @@ def import_dataset(fmt: str, inputs: Sequence[str | Path], out: str | Path | Non
         name = _unique(scene_name(fmt, raw), names)
         names.add(name)
         describer.add(scene)
+        deriver.add(Scene.from_dict(scene))
         if out is not None:
             _write_scene(out, name, scene)
         if keep:
             result.scenes[name] = scene
-    result.description = describer.result()
+    result.description = {**describer.result(), 'allowance': deriver.result().to_dict()}
     if out is not None:
         report.write(out)
         description.write(result.description, out / description.FILE_NAME)

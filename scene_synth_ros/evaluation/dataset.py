@@ -29,9 +29,11 @@ from typing import Sequence
 import torch
 
 from .. import rules as design_rules
+from ..allowance import STRICT, Allowance
 from ..categories import PAPER, ROOM_TYPE_ALIASES, RoomTypeSpec, Vocabulary, kl_divergence
 from ..datasets.training import describe_dir, room_type_spec, split_rooms
 from ..errors import DatasetError, RoomTypeConflict
+from ..geometry import check_scene
 from ..networks.bundle import BundleError, bundle_path, bundle_specs, load_bundle
 from ..scene import Scene
 from ..synth import SynthConfig, SynthesisError, Synthesizer
@@ -224,10 +226,16 @@ def compare_categories(spec: RoomTypeSpec, synth: Sequence[Scene], heldout: Sequ
     }
 
 
-def validity(groups: dict[str, Sequence[Scene]]) -> dict:
-    """The paper-corpus evaluation's validity checks (``plausibility``) of each group."""
-    return {name: plausibility.summarize(plausibility.room_metrics(s) for s in scenes)
-            for name, scenes in groups.items()}
+def validity(groups: dict[str, Sequence[Scene]], allowance: Allowance = STRICT) -> dict:
+    """The paper-corpus evaluation's validity checks (``plausibility``) of each group, with
+    what the data set's ``allowance`` lets its rooms do; ``valid_strict``: the share of
+    rooms valid without it."""
+    out = {}
+    for name, scenes in groups.items():
+        out[name] = plausibility.evaluate(scenes, allowance)
+        out[name]['valid_strict'] = (sum(check_scene(s).ok for s in scenes) / len(scenes)
+                                     if scenes else 0.0)
+    return out
 
 
 def rule_report(heldout: Sequence[Scene], synth: Sequence[Scene],
@@ -241,7 +249,7 @@ def rule_report(heldout: Sequence[Scene], synth: Sequence[Scene],
 
 def evaluate_data_room_type(split: Split, spec: RoomTypeSpec, cfg: DataEvalConfig,
                             weights_dir: Path, workers: int = 1, progress: bool = True,
-                            echo: EvalEcho = print) -> dict:
+                            echo: EvalEcho = print, allowance: Allowance = STRICT) -> dict:
     """Every measurement of one room type against its held-out rooms."""
     stages: dict[str, float] = {}
     clock = time.perf_counter()
@@ -264,7 +272,7 @@ def evaluate_data_room_type(split: Split, spec: RoomTypeSpec, cfg: DataEvalConfi
                   'failed': len(failed)},
         'synthesized': rows, 'failed': failed,
         'distribution': compare_categories(spec, synth, split.heldout, split.training),
-        'validity': validity({'synthesized': synth, 'heldout': split.heldout}),
+        'validity': validity({'synthesized': synth, 'heldout': split.heldout}, allowance),
         'speed': speed.summarize(records),
         'stage_seconds': stages,
     }
@@ -311,6 +319,7 @@ def run_data_evaluation(data_dir: str | Path, weights_dir: str | Path, room_type
         results = {'mode': 'dataset', 'command': command, 'data_dir': str(data_dir),
                    'format': desc.format, 'weights_dir': str(weights_dir),
                    'config': cfg.to_dict(), 'hardware': speed.hardware(workers),
+                   'allowance': desc.allowance.to_dict(),
                    'without_bundle': [rt for rt in desc.room_types if rt not in specs],
                    'room_types': {}, 'seconds': 0.0}
         if room_type == 'all' and results['without_bundle']:
@@ -323,7 +332,7 @@ def run_data_evaluation(data_dir: str | Path, weights_dir: str | Path, room_type
                  f'{cfg.rooms_per_shell} synthesized per shell (seed {cfg.seed}, '
                  f'{workers} workers)')
             res = evaluate_data_room_type(split, specs[rt], cfg, weights_dir, workers,
-                                          progress, echo)
+                                          progress, echo, desc.allowance)
             # A description edited after training no longer says what the weights learned.
             res['spec_matches_data'] = _data_spec(desc, rt) == specs[rt]
             results['room_types'][rt] = res

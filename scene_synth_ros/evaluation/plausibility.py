@@ -14,6 +14,7 @@ from typing import Iterable
 
 import numpy as np
 
+from ..allowance import STRICT, Allowance
 from ..geometry import check_scene
 from ..scene import Scene
 
@@ -29,9 +30,10 @@ def _fraction(count: int, total: int) -> float:
     return count / total if total else math.nan
 
 
-def room_metrics(scene: Scene) -> dict[str, float]:
-    """The plausibility metrics of one room (NaN where undefined)."""
-    r = check_scene(scene)
+def room_metrics(scene: Scene, allowance: Allowance = STRICT) -> dict[str, float]:
+    """The plausibility metrics of one room (NaN where undefined), with what ``allowance``
+    lets it do."""
+    r = check_scene(scene, allowance)
     first = len(scene.first_tier)
     ring = scene.room.polygon.exterior
     gaps = [ring.distance(o.footprint()) for o in scene.first_tier]
@@ -58,5 +60,5 @@ def summarize(rows: Iterable[dict[str, float]]) -> dict[str, float]:
     return out
 
 
-def evaluate(scenes: Iterable[Scene]) -> dict[str, float]:
-    return summarize(room_metrics(s) for s in scenes)
+def evaluate(scenes: Iterable[Scene], allowance: Allowance = STRICT) -> dict[str, float]:
+    return summarize(room_metrics(s, allowance) for s in scenes)
