@@ -213,3 +213,57 @@ def test_every_category_stands_alone_in_both_engines(tmp_path):
                    pybullet_rest(export_urdf(scene, tmp_path / 'all.urdf'))):
         assert report.bodies == len(CATEGORIES)
         assert report.passed(), report.failures()
+
+
+def _tucked(host: str, host_size, seat: str, seat_size, into: float, yaw: float):
+    """A ``seat`` facing ``host`` with ``into`` metres of its footprint under the host's
+    edge, the pair turned by ``yaw`` about the room's centre."""
+    from scene_synth_ros.scene import Opening, Room, Scene
+    room = Room('dining', ((0, 0), (5, 0), (5, 4), (0, 4)), 2.6,
+                (Opening('door', (2.5, 0.0), 0.9, 2.05),))
+    c, s = math.cos(yaw), math.sin(yaw)
+    centre = np.array([2.5, 2.0])
+    offset = host_size[1] / 2 + seat_size[1] / 2 - into        # along the host's depth (+x)
+    spot = centre + offset * np.array([c, s])
+    return Scene(room, [
+        PlacedObject('host', host, '', (*centre, 0.0), yaw, host_size),
+        PlacedObject('seat', seat, '', (*spot, 0.0), yaw + math.pi, seat_size)])
+
+
+@pytest.mark.parametrize('host,host_size,seat,seat_size,cut', [
+    ('dining table', (1.6, 0.9, 0.75), 'dining chair', (0.45, 0.5, 0.9), True),
+    # a stool fits under the island's front overhang as it is
+    ('kitchen island', (1.8, 0.9, 0.9), 'bar stool', (0.4, 0.4, 0.75), False)])
+def test_a_seat_tucked_under_its_table_rests_in_both_engines(host, host_size, seat,
+                                                              seat_size, cut, tmp_path):
+    """Tucked as a data set's allowance lets it be (``allowance.Allowance.tucks``), the seat's
+    collision pieces are cut out of the table's where they would start inside them, so both
+    start apart and stand still."""
+    from shapely.geometry import Polygon
+
+    from scene_synth_ros.export.physics import _world_box, body_of
+    from scene_synth_ros.geometry import collisions
+
+    def inside(a, b) -> bool:          # does a piece of body a start inside one of b's?
+        for p in a.pieces:
+            pa, pa0, pa1 = _world_box(p, a)
+            for q in b.pieces:
+                qa, qa0, qa1 = _world_box(q, b)
+                if min(pa1, qa1) - max(pa0, qa0) > 1e-4 and \
+                        Polygon(pa).intersection(Polygon(qa)).area > 1e-6:
+                    return True
+        return False
+
+    for k, (into, yaw) in enumerate(((0.25, 0.0), (0.3, 0.7))):
+        scene = _tucked(host, host_size, seat, seat_size, into, yaw)
+        assert collisions(scene) == [('host', 'seat')]
+        table, chair = scene_bodies(scene)
+        # the model's own pieces would start inside the table's; the exported ones do not
+        uncut = body_of(scene.objects[1], scene.room)
+        assert inside(uncut, table) == cut
+        assert (chair.pieces != uncut.pieces) == cut
+        assert not inside(chair, table)
+        mj = mujoco_rest(export_mjcf(scene, tmp_path / f'{k}.xml'))
+        pb = pybullet_rest(export_urdf(scene, tmp_path / f'{k}.urdf'))
+        assert mj.passed(), mj.failures()
+        assert pb.passed(), pb.failures()

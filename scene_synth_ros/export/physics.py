@@ -29,6 +29,16 @@ Clearance
     rest as they are; the visual mesh keeps the full size. Heights are never clipped: a
     first-tier body stands on the floor (z = 0) and a second-tier one on its parent's top.
 
+Tucked objects
+    A room may tuck one object under another (a chair's seat under a table's top, as a data
+    set's allowance permits: ``allowance.Allowance``). Where two first-tier footprints
+    overlap by more than the collision tolerance at overlapping heights, the smaller
+    object's pieces are cut back out of the larger's (``untucked_pieces``): each piece that
+    would start inside one of the host's loses its top, its bottom (if it does not stand on
+    the floor) or the side towards the host, whichever keeps the most of it. A chair's front
+    legs end under the table's apron, its arms stop at the apron's face; both bodies start
+    apart and rest.
+
 Mass and inertia
     mass = the object's box volume x a bulk density per category group (``DENSITIES``, kg
     per cubic metre of bounding box, set from typical masses: a 1.4 m desk 30 kg, a double
@@ -38,7 +48,7 @@ Mass and inertia
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 import math
 
@@ -46,6 +56,7 @@ import numpy as np
 from shapely.geometry import LineString, Point, Polygon
 
 from ..catalog import Catalog, ModelVariant
+from ..geometry import collisions
 from ..meshes import build_parts, variant_for
 from ..scene import PlacedObject, Room, Scene, rotation
 from ..thresholds import COLLISION_TOLERANCE
@@ -321,13 +332,75 @@ def body_of(obj: PlacedObject, room: Room, parent: PlacedObject | None = None,
                 float(obj.yaw), pieces, float(mass), com, inertia, obj.support)
 
 
+def _world_box(piece: Piece, body: Body) -> tuple[np.ndarray, float, float]:
+    """A piece's footprint corners in the world and its bottom and top heights."""
+    c, s = np.asarray(piece.centre), np.asarray(piece.size)
+    local = np.array([[sx, sy] for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]) * s[:2] / 2
+    world = (local + c[:2]) @ rotation(body.yaw).T + np.asarray(body.position[:2])
+    z = body.position[2] + c[2]
+    return world, z - s[2] / 2, z + s[2] / 2
+
+
+def _cut(piece: Piece, tucked: Body, host_piece: Piece, host: Body, gap: float
+         ) -> tuple[Piece, ...] | None:
+    """``piece`` of ``tucked`` cut out of ``host``'s ``host_piece`` (None: they are apart)."""
+    corners, bottom, top = _world_box(host_piece, host)
+    lo, hi = (np.asarray(piece.centre) - np.asarray(piece.size) / 2,
+              np.asarray(piece.centre) + np.asarray(piece.size) / 2)
+    # the host piece in the tucked object's frame: its bounds there (around it when turned)
+    local = (corners - np.asarray(tucked.position[:2])) @ rotation(tucked.yaw)
+    qlo = np.array([*local.min(axis=0), bottom - tucked.position[2]])
+    qhi = np.array([*local.max(axis=0), top - tucked.position[2]])
+    if np.any(np.minimum(hi, qhi) - np.maximum(lo, qlo) <= 0):
+        return None
+    mine = Polygon(_world_box(piece, tucked)[0])
+    if not mine.intersects(Polygon(corners)) or mine.intersection(Polygon(corners)).area <= 0:
+        return None
+    options = []
+    for axis in range(3):
+        below, above = lo.copy(), hi.copy()
+        below_hi = hi.copy()
+        below_hi[axis] = qlo[axis] - gap           # keep the part on the low side
+        above_lo = lo.copy()
+        above_lo[axis] = qhi[axis] + gap           # keep the part on the high side
+        options.append((below, below_hi))
+        if axis < 2 or lo[2] > 1e-6:                # a piece on the floor keeps its foot
+            options.append((above_lo, above))
+    kept = [(float(np.prod(b - a)), a, b) for a, b in options if np.all(b - a > 1e-3)]
+    if not kept:
+        return ()
+    _, a, b = max(kept, key=lambda k: k[0])
+    return (Piece(tuple(float(v) for v in (a + b) / 2), tuple(float(v) for v in b - a)),)
+
+
+def untucked_pieces(tucked: Body, host: Body, gap: float) -> tuple[Piece, ...]:
+    """``tucked``'s pieces cut back until none starts inside one of ``host``'s, ``gap``
+    apart (see the module docstring); its pieces as they are where nothing needs cutting."""
+    pieces = list(tucked.pieces)
+    for q in host.pieces:
+        out = []
+        for p in pieces:
+            cut = _cut(p, tucked, q, host, gap)
+            out += [p] if cut is None else list(cut)
+        pieces = out or pieces[:1]
+    return tuple(pieces)
+
+
 def scene_bodies(scene: Scene, config: PhysicsConfig = DEFAULT_PHYSICS,
                  catalog: Catalog | None = None) -> list[Body]:
-    """Every object of ``scene`` as a rigid body, in the scene's order."""
+    """Every object of ``scene`` as a rigid body, in the scene's order (tucked ones cut out
+    of their hosts)."""
     by_id = {o.id: o for o in scene.objects}
-    return [body_of(o, scene.room, by_id.get(o.support) if o.support else None, config,
-                    catalog)
-            for o in scene.objects]
+    bodies = {o.id: body_of(o, scene.room, by_id.get(o.support) if o.support else None,
+                            config, catalog)
+              for o in scene.objects}
+    for pair in collisions(scene):
+        tucked, host = sorted(pair, key=lambda i: by_id[i].width * by_id[i].depth)
+        body = bodies[tucked]
+        pieces = untucked_pieces(body, bodies[host], config.clearance)
+        com, inertia = mass_properties(pieces, body.mass)
+        bodies[tucked] = replace(body, pieces=pieces, com=com, inertia=inertia)
+    return [bodies[o.id] for o in scene.objects]
 
 
 def quat_wxyz(yaw: float) -> tuple[float, float, float, float]:
