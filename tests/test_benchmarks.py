@@ -187,6 +187,15 @@ def test_real_rooms_tiny():
     assert 'rooms of a known type not furnished validly: 0' in out
 
 
+def test_data_validity_tiny():
+    real = BENCHMARKS.parent.parent / 'shared' / 'data' / 'real'
+    if not real.is_dir():
+        pytest.skip(f'no real data in {real}')
+    out = run('data_validity.py', str(real), '--formats', 'suncg,3dfront')
+    assert '3dfront: 5 rooms; allowance derived from one half' in out
+    assert "allowance of all 1 rooms: {'tucks': []" in out
+
+
 @pytest.mark.slow
 def test_room_sizes_tiny():
     out = run('room_sizes.py', '-n', '1', '--rooms', 'living:9x7')
