@@ -48,7 +48,7 @@ def main(argv=None) -> int:
         halves = (names[::2], names[1::2])
         allowances = [derive(Scene.from_dict(scenes[n]) for n in half) for half in halves]
         rows = defaultdict(lambda: defaultdict(int))
-        for half, allowance in zip(halves, reversed(allowances)):
+        for half, allowance in zip(halves, reversed(allowances), strict=True):
             for n in half:
                 scene = Scene.from_dict(scenes[n])
                 row = rows[scene.room.room_type]
@@ -65,7 +65,7 @@ def main(argv=None) -> int:
               f'{"valid, allowed":>15}   still failing: '
               + ', '.join(CHECKS + ('doors_connected',)))
         total = defaultdict(int)
-        for rt, row in sorted(rows.items()):
+        for row in rows.values():
             for k, v in row.items():
                 total[k] += v
         for rt, row in sorted(rows.items()) + [('all', total)]:

@@ -92,7 +92,8 @@ def test_an_object_spawned_above_its_support_rests_within_the_settle_allowance()
 
 
 def test_a_door_zone_is_as_deep_as_the_allowance_but_never_shallower_than_a_robot_needs():
-    near = obj('d', 'dresser', 2.5, 0.6 + 0.2, 1.0, 0.4, yaw=math.pi / 2)           # 0.6 m from the door
+    # 0.6 m from the door
+    near = obj('d', 'dresser', 2.5, 0.6 + 0.2, 1.0, 0.4, yaw=math.pi / 2)
     scene = Scene(ROOM, [near])
     assert geometry.blocked_doors(scene) == [0]
     assert geometry.blocked_doors(scene, allowance=Allowance(door_depth=0.55)) == []
@@ -163,7 +164,8 @@ def test_real_procthor_rooms_pass_with_the_allowance_of_the_other_rooms(tmp_path
     allowed = [derive(h) for h in halves]
     strict = sum(geometry.check_scene(s).ok for s in scenes) / len(scenes)
     valid = sum(geometry.check_scene(s, a).ok
-                for half, a in zip(halves, reversed(allowed)) for s in half) / len(scenes)
+                for half, a in zip(halves, reversed(allowed), strict=True)
+                for s in half) / len(scenes)
     assert strict < 0.05 and valid > 0.7, (strict, valid)
     written = description.load(tmp_path / description.FILE_NAME).allowance
     assert ('chair', 'dining table') in [(t, h) for t, h, _ in written.tucks]

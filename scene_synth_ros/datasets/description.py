@@ -227,8 +227,9 @@ HEADER = """\
 # supported_by (second tier: parent category -> objects), against_wall, width / depth /
 # height (min, median, max in metres; width across the front, depth back to front) and
 # importance (mean footprint of the size range x per_room); then the allowance (what these
-# rooms do that the strict validity checks refuse: tucks, inside, settle, door_depth). Edit freely (merge or drop
-# categories, fix a tier); `scene_synth_ros.datasets.description.load` checks the result.
+# rooms do that the strict validity checks refuse: tucks, inside, settle, door_depth). Edit
+# freely (merge or drop categories, fix a tier); `scene_synth_ros.datasets.description.load`
+# checks the result.
 """
 
 
