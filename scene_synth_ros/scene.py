@@ -351,6 +351,10 @@ class Scene:
     def first_tier(self) -> list[PlacedObject]:
         return [o for o in self.objects if o.support is None]
 
+    def first_tier_of(self, categories) -> list[PlacedObject]:
+        """The first-tier objects of ``categories``."""
+        return [o for o in self.objects if o.category in categories and o.support is None]
+
     @property
     def second_tier(self) -> list[PlacedObject]:
         return [o for o in self.objects if o.support is not None]

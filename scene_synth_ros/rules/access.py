@@ -78,7 +78,7 @@ from ..thresholds import (
 from . import robot
 from .robot import OPERATED_FRONT, Robot
 from .rule import BEDS, Outcome, Rule
-from .spatial import side
+from .spatial import changed_by, side
 
 STORAGE = members('storage')
 # The seat of a dressing table is pulled out to use it, so it does not block the table.
@@ -180,11 +180,9 @@ def _cases(scene: Scene, categories) -> tuple[list[PlacedObject], _Obstacles | N
 
 
 def _entered_by(new: PlacedObject | None, obj: PlacedObject, depth: float) -> bool:
-    """Whether ``new`` is ``obj`` or blocks some of the strip ``depth`` deep before its front:
-    a piece added to a room changes no other piece's clear front (``new`` None: every piece
-    counts)."""
-    return (new is None or obj is new
-            or _strip(obj, 'front', depth)[0].intersects(new.footprint(CLEARANCE_TOLERANCE)))
+    """Whether ``new`` can have changed ``obj``'s clear front ``depth`` deep
+    (``spatial.changed_by``; lying within the tolerance of the strip does not enter it)."""
+    return changed_by(new, obj, _strip(obj, 'front', depth)[0], CLEARANCE_TOLERANCE)
 
 
 def storage_verdicts(scene: Scene, new: PlacedObject | None = None) -> dict[int, bool]:

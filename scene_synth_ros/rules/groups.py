@@ -213,7 +213,7 @@ def partner_zone(scene: Scene, rule: str, category: str, vocabulary: Vocabulary 
     m = max(info.width[1], info.depth[1]) / 2
     boxes = []
     if rule == 'chair_at_table':
-        partners = _first_tier(scene, TABLES)
+        partners = scene.first_tier_of(TABLES)
         for t in partners:
             hx, hy = t.depth / 2, t.width / 2
             if t.category in WORKTOPS:
@@ -223,14 +223,14 @@ def partner_zone(scene: Scene, rule: str, category: str, vocabulary: Vocabulary 
     elif rule == 'nightstand_by_bed':
         if scene.room.room_type != 'bedroom':
             return None
-        partners = _first_tier(scene, BEDS_WITH_HEAD)
+        partners = scene.first_tier_of(BEDS_WITH_HEAD)
         for b in partners:
             hx, hy = b.depth / 2, b.width / 2
             x0, x1 = -hx - NIGHTSTAND_GAP - m, -hx + min(HEAD_END, b.depth) + NIGHTSTAND_GAP + m
             boxes += [local_box(b, x0, x1, hy, hy + NIGHTSTAND_GAP + m),
                       local_box(b, x0, x1, -hy - NIGHTSTAND_GAP - m, -hy)]
     elif rule == 'bidet_by_toilet':
-        partners = _first_tier(scene, ('toilet',))
+        partners = scene.first_tier_of(('toilet',))
         for t in partners:
             hx, hy = t.depth / 2, t.width / 2
             x0, x1 = -hx - SAME_LINE_OFFSET, -hx + SAME_LINE_OFFSET + 2 * m
@@ -239,7 +239,7 @@ def partner_zone(scene: Scene, rule: str, category: str, vocabulary: Vocabulary 
     elif category == 'coffee table':
         # A table may come before its seats (the importance order of a bedroom puts it
         # before easy chairs): with no lounge seating in the room yet it goes anywhere.
-        partners = _first_tier(scene, LOUNGE_SEATS)
+        partners = scene.first_tier_of(LOUNGE_SEATS)
         if not partners:
             return None
         for s in partners:
@@ -300,15 +300,12 @@ def withdrawable(scene: Scene, rules) -> list[str]:
     nightstand the accessory."""
     if 'coffee_table_has_seating' not in rules:
         return []
-    chairs = _first_tier(scene, CHAIRS)
+    chairs = scene.first_tier_of(CHAIRS)
     return [t for t, ok in coffee_table_verdicts(scene).items()
             if not ok and not any(seated_at(c, scene.get(t)) for c in chairs)]
 
 
 # ---- the rules ---------------------------------------------------------------------------
-def _first_tier(scene: Scene, categories) -> list[PlacedObject]:
-    return [o for o in scene.objects if o.category in categories and o.support is None]
-
 
 def _count(cases, keeps) -> Outcome:
     cases = list(cases)
@@ -320,14 +317,14 @@ def _tally(verdicts: dict) -> Outcome:
 
 
 def desk_has_seat(scene: Scene) -> Outcome:
-    seats = _first_tier(scene, SEATS)
-    return _count(_first_tier(scene, DESKS), lambda d: any(seated_at(s, d) for s in seats))
+    seats = scene.first_tier_of(SEATS)
+    return _count(scene.first_tier_of(DESKS), lambda d: any(seated_at(s, d) for s in seats))
 
 
 def chair_verdicts(scene: Scene) -> dict[str, bool]:
     """Whether each chair (by id) keeps ``chair_at_table``."""
-    tables = _first_tier(scene, TABLES)
-    return {c.id: any(seated_at(c, t) for t in tables) for c in _first_tier(scene, CHAIRS)}
+    tables = scene.first_tier_of(TABLES)
+    return {c.id: any(seated_at(c, t) for t in tables) for c in scene.first_tier_of(CHAIRS)}
 
 
 def chair_at_table(scene: Scene) -> Outcome:
@@ -338,8 +335,8 @@ def nightstand_verdicts(scene: Scene) -> dict[str, bool]:
     """Whether each stand of a bedroom (by id) keeps ``nightstand_by_bed``."""
     if scene.room.room_type != 'bedroom':
         return {}
-    beds = _first_tier(scene, BEDS_WITH_HEAD)
-    return {s.id: any(at_head_of(s, b) for b in beds) for s in _first_tier(scene, ('stand',))}
+    beds = scene.first_tier_of(BEDS_WITH_HEAD)
+    return {s.id: any(at_head_of(s, b) for b in beds) for s in scene.first_tier_of(('stand',))}
 
 
 def nightstand_by_bed(scene: Scene) -> Outcome:
@@ -347,16 +344,16 @@ def nightstand_by_bed(scene: Scene) -> Outcome:
 
 
 def double_bed_has_nightstand(scene: Scene) -> Outcome:
-    stands = _first_tier(scene, ('stand',))
-    return _count(_first_tier(scene, ('double bed',)),
+    stands = scene.first_tier_of(('stand',))
+    return _count(scene.first_tier_of(('double bed',)),
                   lambda b: any(at_head_of(s, b) for s in stands))
 
 
 def bidet_verdicts(scene: Scene) -> dict[str, bool]:
     """Whether each bidet (by id) keeps ``bidet_by_toilet``."""
-    toilets = _first_tier(scene, ('toilet',))
+    toilets = scene.first_tier_of(('toilet',))
     return {b.id: any(beside_toilet(b, t) for t in toilets)
-            for b in _first_tier(scene, ('bidet',))}
+            for b in scene.first_tier_of(('bidet',))}
 
 
 def bidet_by_toilet(scene: Scene) -> Outcome:
@@ -365,7 +362,7 @@ def bidet_by_toilet(scene: Scene) -> Outcome:
 
 def corner_verdicts(scene: Scene) -> dict[str, bool]:
     """Whether each bathtub and shower (by id) keeps ``bath_in_corner``."""
-    return {o.id: in_corner(scene, o) for o in _first_tier(scene, ('bathtub', 'shower'))}
+    return {o.id: in_corner(scene, o) for o in scene.first_tier_of(('bathtub', 'shower'))}
 
 
 def bath_in_corner(scene: Scene) -> Outcome:
@@ -378,14 +375,14 @@ def sofa_faces_table_or_tv(scene: Scene) -> Outcome:
     def keeps(sofa: PlacedObject) -> bool:
         return any(math.dist(sofa.position[:2], t.position[:2]) <= VIEW_RANGE
                    and bearing(sofa, t) <= VIEW_ANGLE for t in targets)
-    return _count(_first_tier(scene, ('sofa',)), keeps)
+    return _count(scene.first_tier_of(('sofa',)), keeps)
 
 
 def coffee_table_verdicts(scene: Scene) -> dict[str, bool]:
     """Whether each coffee table (by id) keeps ``coffee_table_has_seating``."""
-    seats = _first_tier(scene, LOUNGE_SEATS)
+    seats = scene.first_tier_of(LOUNGE_SEATS)
     return {t.id: any(lounges_at(s, t) for s in seats)
-            for t in _first_tier(scene, ('coffee table',))}
+            for t in scene.first_tier_of(('coffee table',))}
 
 
 def coffee_table_has_seating(scene: Scene) -> Outcome:
@@ -396,18 +393,18 @@ def seating_verdicts(scene: Scene) -> dict[str, bool]:
     """``coffee_table_has_seating`` as insertion keeps it: a coffee table is a case only
     once the room holds lounge seating, so that a table may come before its seats, which
     must then serve it."""
-    return coffee_table_verdicts(scene) if _first_tier(scene, LOUNGE_SEATS) else {}
+    return coffee_table_verdicts(scene) if scene.first_tier_of(LOUNGE_SEATS) else {}
 
 
 def tv_square_on_stand(scene: Scene) -> Outcome:
-    parents = {o.id: o for o in _first_tier(scene, TV_PARENTS)}
+    parents = {o.id: o for o in scene.first_tier_of(TV_PARENTS)}
     tvs = [o for o in scene.objects if o.category == 'television' and o.support in parents]
     return _count(tvs, lambda tv: abs(wrap_angle(tv.yaw - parents[tv.support].yaw))
                   <= TV_SQUARE)
 
 
 def chairs_square(scene: Scene) -> Outcome:
-    return _count(_first_tier(scene, SQUARE_SEATS),
+    return _count(scene.first_tier_of(SQUARE_SEATS),
                   lambda s: off_axes(scene.room, s) < SQUARE_ANGLE)
 
 

@@ -61,6 +61,7 @@ from ..thresholds import (
 from . import robot
 from .groups import on_one_line, seated_at, zone_beside
 from .rule import Outcome, Rule, category_of
+from .spatial import changed_by
 
 SINKS, STOVES, FRIDGES = (('kitchen sink',), ('stove',), ('fridge',))
 TRIANGLE_KINDS = (SINKS, STOVES, FRIDGES)
@@ -73,9 +74,6 @@ DOOR_FRONTS = members('door front')
 DINING_SEATS = members('dining seat')
 DINING_SURFACES = members('dining surface')
 
-
-def _first_tier(scene: Scene, categories) -> list[PlacedObject]:
-    return [o for o in scene.first_tier if o.category in categories]
 
 
 def _clear(scene: Scene, strip: Polygon, owner: PlacedObject) -> bool:
@@ -105,7 +103,7 @@ def triangle_ok(sink: PlacedObject, stove: PlacedObject, fridge: PlacedObject) -
 def work_triangle(scene: Scene) -> Outcome:
     if scene.room.room_type != 'kitchen':
         return 0, 0
-    trio = [_first_tier(scene, c) for c in (SINKS, STOVES, FRIDGES)]
+    trio = [scene.first_tier_of(c) for c in (SINKS, STOVES, FRIDGES)]
     if not any(trio):
         return 0, 0
     return int(any(triangle_ok(*t) for t in itertools.product(*trio))), 1
@@ -117,7 +115,7 @@ def triangle_verdicts(scene: Scene) -> dict[str, bool]:
     that a kitchen that gets all three has them within reach of each other."""
     if scene.room.room_type != 'kitchen':
         return {}
-    kinds = [_first_tier(scene, c) for c in TRIANGLE_KINDS]
+    kinds = [scene.first_tier_of(c) for c in TRIANGLE_KINDS]
     out = {}
     for k, own in enumerate(kinds):
         others = [kind for j, kind in enumerate(kinds) if j != k and kind]
@@ -132,7 +130,7 @@ def owed_corners(scene: Scene) -> tuple[str, ...]:
     corners)."""
     if scene.room.room_type != 'kitchen':
         return ()
-    return tuple(c for c in KITCHEN_ESSENTIALS if not _first_tier(scene, (c,)))
+    return tuple(c for c in KITCHEN_ESSENTIALS if not scene.first_tier_of((c,)))
 
 
 def joins_run(unit: PlacedObject, other: PlacedObject) -> bool:
@@ -144,7 +142,7 @@ def joins_run(unit: PlacedObject, other: PlacedObject) -> bool:
 
 
 def run_verdicts(scene: Scene) -> dict[str, bool]:
-    units = _first_tier(scene, RUN_UNITS)
+    units = scene.first_tier_of(RUN_UNITS)
     if scene.room.room_type != 'kitchen' or len(units) < 2:
         return {}
     return {u.id: any(joins_run(u, o) for o in units if o.id != u.id) for u in units}
@@ -163,7 +161,7 @@ def into_run(scene: Scene, unit: PlacedObject) -> PlacedObject:
     if scene.room.room_type != 'kitchen' or unit.category not in RUN_UNITS:
         return unit
     best = None
-    for other in _first_tier(scene, RUN_UNITS):
+    for other in scene.first_tier_of(RUN_UNITS):
         if not on_one_line(unit, other):
             continue
         _, y = local_xy(other, unit.position)
@@ -180,12 +178,6 @@ def into_run(scene: Scene, unit: PlacedObject) -> PlacedObject:
     return replace(unit, position=(x - s * shift, y + c * shift, z))
 
 
-def _entered(new: PlacedObject | None, owner: PlacedObject, strip: Polygon) -> bool:
-    """Whether a verdict on ``owner``'s ``strip`` can have changed with ``new`` added: it is
-    ``owner``, or it enters the strip (``new`` None: every verdict counts)."""
-    return new is None or new.id == owner.id or new.footprint().intersects(strip)
-
-
 def _front(o: PlacedObject) -> Polygon:
     return local_box(o, o.depth / 2, o.depth / 2 + DOOR_SWING, -o.width / 2, o.width / 2)
 
@@ -195,9 +187,9 @@ def front_verdicts(scene: Scene, new: PlacedObject | None = None) -> dict[str, b
     first-tier piece of ``scene`` just added), only those whose verdict it can have
     changed: itself, and those whose front it enters."""
     out = {}
-    for o in _first_tier(scene, DOOR_FRONTS):
+    for o in scene.first_tier_of(DOOR_FRONTS):
         strip = _front(o)
-        if _entered(new, o, strip):
+        if changed_by(new, o, strip):
             out[o.id] = _clear(scene, strip, o)
     return out
 
@@ -210,7 +202,7 @@ def fronts_open(scene: Scene) -> Outcome:
 def _surfaces(scene: Scene, seat_category: str) -> list[PlacedObject]:
     """What a seat of ``seat_category`` is seated at: a dining table or kitchen island, and
     for a bar stool a counter too."""
-    return _first_tier(scene, DINING_SURFACES + (('counter',) if seat_category == 'bar stool'
+    return scene.first_tier_of(DINING_SURFACES + (('counter',) if seat_category == 'bar stool'
                                                  else ()))
 
 
@@ -220,10 +212,10 @@ def seat_verdicts(scene: Scene, new: PlacedObject | None = None) -> dict[str, bo
     every seat where it is something to sit at."""
     at = new is not None and (new.category in DINING_SURFACES or new.category == 'counter')
     out = {}
-    for seat in _first_tier(scene, DINING_SEATS):
+    for seat in scene.first_tier_of(DINING_SEATS):
         behind = local_box(seat, -seat.depth / 2 - PULL_OUT, -seat.depth / 2,
                            -seat.width / 2, seat.width / 2)
-        if at or _entered(new, seat, behind):
+        if at or changed_by(new, seat, behind):
             out[seat.id] = (any(seated_at(seat, t) for t in _surfaces(scene, seat.category))
                             and _clear(scene, behind, seat))
     return out
@@ -259,7 +251,7 @@ def partner_zone(scene: Scene, rule: str, category: str, vocabulary: Vocabulary 
         lo, hi = TRIANGLE_LEG
         rings = [shapely.union_all([Point(o.position[:2]).buffer(hi).difference(
                      Point(o.position[:2]).buffer(lo)) for o in kind])
-                 for kind in (_first_tier(scene, c) for c in TRIANGLE_KINDS
+                 for kind in (scene.first_tier_of(c) for c in TRIANGLE_KINDS
                               if category not in c) if kind]
         return shapely.intersection_all(rings) if rings else None
     info = category_of(category, scene.room.room_type, vocabulary) or CATEGORIES[category]

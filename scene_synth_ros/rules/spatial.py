@@ -12,6 +12,14 @@ from ..render import room_axis_yaw
 from ..scene import PlacedObject, Room, wrap_angle
 
 
+def changed_by(new: PlacedObject | None, owner: PlacedObject, strip, inset: float = 0.0
+               ) -> bool:
+    """Whether a verdict on ``owner``'s clear ``strip`` can have changed with ``new`` added to
+    the room: ``new`` is ``owner``, or its footprint (moved in by ``inset``) enters the strip.
+    A piece added changes no other piece's strip (``new`` None: every verdict counts)."""
+    return new is None or new.id == owner.id or strip.intersects(new.footprint(inset))
+
+
 def side(obj: PlacedObject, which: str) -> LineString:
     """One side of the footprint as a segment: 'back', 'front', 'left' or 'right' (left and
     right as seen from behind the object, looking where it faces)."""
