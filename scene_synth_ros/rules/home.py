@@ -133,6 +133,18 @@ def owed_corners(scene: Scene) -> tuple[str, ...]:
     return tuple(c for c in KITCHEN_ESSENTIALS if not scene.first_tier_of((c,)))
 
 
+def owed(scene: Scene, rules) -> tuple[int, frozenset[str]]:
+    """What a finished ``scene`` still owes for ``rules`` (names in ``OWED_PARTNERS``), as
+    ``groups.owed`` says it: the cases broken and the categories that could mend them (for
+    ``work_triangle``, one case per missing corner, ``owed_corners``)."""
+    missing = owed_corners(scene) if 'work_triangle' in rules else ()
+    return len(missing), frozenset(missing)
+
+
+# The rules a finished room may be owed partners for (``owed``), and the partners' categories.
+OWED_PARTNERS: dict[str, tuple[str, ...]] = {'work_triangle': KITCHEN_ESSENTIALS}
+
+
 def joins_run(unit: PlacedObject, other: PlacedObject) -> bool:
     """Whether ``other`` stands beside ``unit`` in one run (see ``counter_run``)."""
     if not on_one_line(unit, other):

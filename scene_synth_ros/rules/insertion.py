@@ -61,7 +61,7 @@ VOCABULARY_RULES = frozenset({'wall_contact'})
 
 # Rules whose broken cases get one more draw among their partners at a STOP
 # (``SynthConfig.owed_partners``): the group rules', and a kitchen's essentials.
-OWED_RULES = tuple(groups.OWED_PARTNERS) + ('work_triangle',)
+OWED_RULES = tuple(groups.OWED_PARTNERS) + tuple(home.OWED_PARTNERS)
 # Rules that a draw owed one of these categories at a STOP need not keep where it found no
 # place keeping them: a small kitchen whose walls leave no place 1.2 m from its sink is
 # better with its stove nearer than without one.
@@ -77,12 +77,11 @@ def waived_when_owed(partners, rules) -> frozenset[str]:
 
 def owed(scene: Scene, rules) -> tuple[int, frozenset[str]]:
     """How many cases of ``rules`` (names in ``OWED_RULES``) a finished ``scene`` still owes
-    a partner, and the categories that could mend them (``groups.owed``; for
-    ``work_triangle``, the kitchen's missing essentials: ``home.owed_corners``)."""
-    broken, partners = groups.owed(scene, [r for r in rules if r in groups.OWED_PARTNERS])
-    if 'work_triangle' in rules:
-        missing = home.owed_corners(scene)
-        broken, partners = broken + len(missing), partners | frozenset(missing)
+    a partner, and the categories that could mend them (``groups.owed``, ``home.owed``)."""
+    broken, partners = 0, frozenset()
+    for family in (groups, home):
+        b, p = family.owed(scene, [r for r in rules if r in family.OWED_PARTNERS])
+        broken, partners = broken + b, partners | p
     return broken, partners
 
 
