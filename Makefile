@@ -43,7 +43,7 @@ demo: install
 
 # The whole suite, after the linter.
 test: lint
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q --durations=20
 
 # The lane for people working on the code: everything but the tests marked slow.
 test-fast: install
