@@ -358,14 +358,12 @@ def _cut(piece: Piece, tucked: Body, host_piece: Piece, host: Body, gap: float
         return None
     options = []
     for axis in range(3):
-        below, above = lo.copy(), hi.copy()
-        below_hi = hi.copy()
-        below_hi[axis] = qlo[axis] - gap           # keep the part on the low side
-        above_lo = lo.copy()
-        above_lo[axis] = qhi[axis] + gap           # keep the part on the high side
-        options.append((below, below_hi))
+        low_side, high_side = hi.copy(), lo.copy()
+        low_side[axis] = qlo[axis] - gap            # keep what lies below the host's piece
+        high_side[axis] = qhi[axis] + gap           # keep what lies above it
+        options.append((lo, low_side))
         if axis < 2 or lo[2] > 1e-6:                # a piece on the floor keeps its foot
-            options.append((above_lo, above))
+            options.append((high_side, hi))
     kept = [(float(np.prod(b - a)), a, b) for a, b in options if np.all(b - a > 1e-3)]
     if not kept:
         return ()
