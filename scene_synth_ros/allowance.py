@@ -79,6 +79,14 @@ class Allowance:
                    float(settle), None if door is None else float(door))
 
 
+def of_scene(meta: dict[str, Any]) -> Allowance:
+    """The allowance a synthesized scene was furnished under (its ``meta``'s ``allowance``,
+    which ``Synthesizer`` writes for networks trained on a data set); ``STRICT`` without
+    one."""
+    return STRICT if meta.get('allowance') is None else Allowance.from_dict(
+        meta['allowance'], 'the scene\'s meta.allowance')
+
+
 def _metres(v: Any) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool) and 0.0 <= v <= 5.0
 

@@ -50,11 +50,13 @@ def door_entry_point(room: Room, door: Opening, robot_width: float = ROBOT_WIDTH
     return Point(p)
 
 
-def overlaps_any(obj: PlacedObject, others, tol: float = COLLISION_TOLERANCE) -> bool:
+def overlaps_any(obj: PlacedObject, others, tol: float = COLLISION_TOLERANCE,
+                 allowance: Allowance = STRICT) -> bool:
     """Whether ``obj`` interpenetrates any of ``others`` by more than ``tol`` (the pairwise
     rule of ``collisions``)."""
     mine = obj.footprint(tol / 2)
-    return any(mine.intersects(o.footprint(tol / 2)) for o in others)
+    return any(mine.intersects(o.footprint(tol / 2)) and _counts(obj, o, tol, allowance)
+               for o in others)
 
 
 def enters_zone(obj: PlacedObject, zone: Polygon, tol: float = COLLISION_TOLERANCE) -> bool:
@@ -90,15 +92,17 @@ def collisions(scene: Scene, tol: float = COLLISION_TOLERANCE,
         return []
     tree = shapely.STRtree(shrunk)
     a, b = tree.query(shrunk, predicate='intersects')
-    out = set()
-    for i, j in zip(a, b, strict=True):
-        if i >= j or not heights_overlap(objs[i], objs[j], tol):
-            continue
-        allowed = allowance.tuck_depth(objs[i].category, objs[j].category)
-        if allowed and overlap_depth(objs[i], objs[j]) <= allowed + tol:
-            continue
-        out.add((objs[i].id, objs[j].id))
-    return sorted(out)
+    return sorted({(objs[i].id, objs[j].id) for i, j in zip(a, b, strict=True)
+                   if i < j and _counts(objs[i], objs[j], tol, allowance)})
+
+
+def _counts(a: PlacedObject, b: PlacedObject, tol: float, allowance: Allowance) -> bool:
+    """Whether two footprints found to interpenetrate are a collision: their heights overlap
+    and the ``allowance`` does not let one tuck under the other that far."""
+    if not heights_overlap(a, b, tol):
+        return False
+    allowed = allowance.tuck_depth(a.category, b.category)
+    return not (allowed and overlap_depth(a, b) <= allowed + tol)
 
 
 def off_floor(scene: Scene, tol: float = FLOOR_TOLERANCE) -> list[str]:

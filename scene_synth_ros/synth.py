@@ -52,6 +52,7 @@ from shapely.geometry import Polygon
 import torch
 
 from . import catalog
+from .allowance import STRICT, Allowance
 from .categories import PAPER, PASSAGE_ROOM_TYPES, RoomTypeSpec, Vocabulary
 from .errors import SceneSynthError, UnknownCategory, quoted
 from .geometry import (
@@ -184,6 +185,8 @@ class Synthesis:
     seconds: float
     timings: dict[str, float] = field(default_factory=dict)   # seconds per module
     robot: RobotReport | None = None     # the robot promise measured on ``scene``
+    # what the networks' data set lets a room do (``Bundle.allowance``): judge ``scene`` by it
+    allowance: Allowance = STRICT
 
 
 @dataclass
@@ -345,7 +348,7 @@ class Synthesizer:
         ii, jj = np.meshgrid(np.arange(n), np.arange(n), indexing='ij')
         centres = grid.pixel_to_world(np.stack([ii, jj], -1)).reshape(-1, 2)
         floor_mask = shapely.contains_xy(room.polygon, centres[:, 0], centres[:, 1])
-        zones = [door_zone(room, d) for d in room.doors]
+        zones = [door_zone(room, d, bundle.allowance) for d in room.doors]
         door_mask = np.zeros(n * n, dtype=bool)
         for z in zones:
             door_mask |= shapely.contains_xy(z, centres[:, 0], centres[:, 1])
@@ -425,8 +428,10 @@ class Synthesizer:
         kept = robot.report(out, cfg.robot, self._robot_state(ctx, out))
         out.meta.update({'generator': 'scene_synth_ros', 'seed': int(seed),
                          'weights': ctx.bundle.config.name, 'robot': kept.to_dict()})
+        if ctx.bundle.allowance != STRICT:
+            out.meta['allowance'] = ctx.bundle.allowance.to_dict()
         return Synthesis(out, added, stopped, time.perf_counter() - t0, dict(ctx.timings),
-                         kept)
+                         kept, ctx.bundle.allowance)
 
     @staticmethod
     def _withdraw(scene: Scene, added: list[PlacedObject], owed: Collection[str]) -> None:
@@ -789,7 +794,7 @@ class Synthesizer:
             if parent is None or support_fraction(obj, parent) < MIN_SUPPORT:
                 return 'support'
             return 'sibling' if overlaps_any(obj, scene.children_of(parent.id)) else None
-        if overlaps_any(obj, scene.first_tier):
+        if overlaps_any(obj, scene.first_tier, allowance=ctx.bundle.allowance):
             return 'collision'
         if any(enters_zone(obj, z) for z in ctx.zones):
             return 'door'

@@ -170,3 +170,45 @@ def test_real_procthor_rooms_pass_with_the_allowance_of_the_other_rooms(tmp_path
     written = description.load(tmp_path / description.FILE_NAME).allowance
     assert ('chair', 'dining table') in [(t, h) for t, h, _ in written.tucks]
     assert written.settle > 0 and written.lowest_inside('shelving unit') is not None
+
+
+@pytest.fixture(scope='module')
+def allowed_weights(tmp_path_factory):
+    """The shipped dining bundle, as if trained on a data set that tucks its dining chairs
+    0.35 m under the table and keeps 0.55 m before its doors."""
+    from dataclasses import replace
+
+    from scene_synth_ros.networks.bundle import bundle_path, load_bundle, save_bundle
+    from scene_synth_ros.paths import weights_dir
+    folder = tmp_path_factory.mktemp('weights')
+    allowance = Allowance(tucks=(('dining chair', 'dining table', 0.35),), door_depth=0.55)
+    save_bundle(replace(load_bundle(bundle_path(weights_dir(), 'dining')), allowance=allowance),
+                folder / 'dining.pt')
+    return folder, allowance
+
+
+def test_networks_trained_on_a_data_set_furnish_rooms_with_its_allowance(allowed_weights):
+    """The bundle carries its data set's allowance: insertion lets a dining chair tuck under
+    the table as deep as it says, and the result is judged, and marked, by it."""
+    from scene_synth_ros.allowance import of_scene
+    from scene_synth_ros.networks.bundle import load_bundle
+    from scene_synth_ros.synth import Synthesizer
+    folder, allowance = allowed_weights
+    assert load_bundle(folder / 'dining.pt').allowance == allowance
+    strict, allowed = Synthesizer(), Synthesizer(folder)
+    table = obj('t', 'dining table', 2.5, 2.5, 1.6, 0.9, h=0.75)
+    for into, ok in ((0.3, True), (0.45, False)):
+        chair = PlacedObject('c', 'dining chair', 'm', (2.5 + 0.45 + 0.25 - into, 2.5, 0.0),
+                             math.pi, (0.45, 0.5, 0.9))
+        for synth, expected in ((strict, False), (allowed, ok)):
+            ctx = synth._context(ROOM, 0, [table])
+            assert synth._refusal(ctx, Scene(ROOM, [table]), chair, None) == \
+                (None if expected else 'collision'), (into, synth.weights_dir)
+    # the door zone is as deep as the data keeps it
+    assert allowed._context(ROOM, 0).zones[0].area < strict._context(ROOM, 0).zones[0].area
+    result = allowed.generate(ROOM, seed=0)
+    assert result.allowance == allowance
+    assert of_scene(result.scene.meta) == allowance
+    assert geometry.check_scene(result.scene, result.allowance).ok
+    assert strict.generate(ROOM, seed=0).allowance == STRICT
+    assert 'allowance' not in strict.generate(ROOM, seed=0).scene.meta

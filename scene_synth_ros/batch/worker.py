@@ -216,7 +216,7 @@ class Worker:
         furnish = self.synth.generate if self.spec.mode == 'generate' else self.synth.complete
         result = furnish(scene, job.seed)
         files.update(self.files(job.name, result.scene))
-        report = check_scene(result.scene)
+        report = check_scene(result.scene, result.allowance)
         out = {'room_type': result.scene.room.room_type,
                'area': round(result.scene.room.area, 2), 'objects': len(result.scene.objects),
                'added': len(result.added), 'stopped': result.stopped, 'valid': report.ok,

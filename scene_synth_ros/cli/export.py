@@ -109,10 +109,11 @@ def cmd_render(args) -> int:
 
 
 def cmd_validate(args) -> int:
+    from ..allowance import of_scene
     from ..geometry import check_scene
     for path in args.files:
         scene = load_scene_file(path, vocabulary=args.vocabulary)
-        report = check_scene(scene)
+        report = check_scene(scene, of_scene(scene.meta))
         print(f'{path}: schema OK, {len(scene)} objects, physically {report.summary()}')
     return 0
 

@@ -191,7 +191,7 @@ def cmd_generate(args) -> int:
     result = synth.generate(room, args.seed)
     print(object_table(result.scene.objects, f'{room.room_type}, {room.area:.1f} m2:'))
     print(_timing_line(result))
-    print(f'physical check: {check_scene(result.scene).summary()}')
+    print(f'physical check: {check_scene(result.scene, result.allowance).summary()}')
     print(f'robot: {result.robot.sentence()}')
     if line := _catalog_line(args, room.room_type, synth.vocabulary):
         print(line)
@@ -213,7 +213,7 @@ def cmd_complete(args) -> int:
     print(object_table(scene.objects, f'kept ({len(scene.objects)}):'))
     print(object_table(result.added, f'added ({len(result.added)}):'))
     print(_timing_line(result))
-    print(f'physical check: {check_scene(result.scene).summary()}')
+    print(f'physical check: {check_scene(result.scene, result.allowance).summary()}')
     print(f'robot: {result.robot.sentence()}')
     if line := _catalog_line(args, scene.room.room_type, synth.vocabulary):
         print(line)
@@ -410,8 +410,9 @@ def cmd_demo(args) -> int:
         scenes.append(s)
         titles.append(f'{name} (seed {seed})')
         kept = len(s) - len(result.added)
+        valid = check_scene(s, result.allowance).ok
         print(f'{name:26s} {s.room.area:6.1f}m2 {kept:4d} {len(result.added):5d} '
-              f'{result.seconds:7.2f} {"yes" if check_scene(s).ok else "NO":>5s}  '
+              f'{result.seconds:7.2f} {"yes" if valid else "NO":>5s}  '
               f'{_added_categories(result.added)}')
     save_grid(scenes, out / 'gallery.png', ncols=3, titles=titles)
     print(f'\nwrote {len(scenes)} scenes (JSON + PNG) and {out / "gallery.png"}')

@@ -20,6 +20,7 @@ from typing import Any
 import torch
 from torch import nn
 
+from ..allowance import STRICT, Allowance
 from ..categories import PAPER, RoomTypeSpec, Vocabulary
 from ..errors import RoomTypeConflict, SceneSynthError
 from ..files import writing_together
@@ -65,6 +66,9 @@ class Bundle:
     models: list[str]
     metrics: dict[str, Any] = field(default_factory=dict)
     spec: RoomTypeSpec | None = None         # the data set's category set; None: the paper's
+    # what the data set's rooms do that the strict checks refuse (its ``dataset.yaml``'s);
+    # insertion lets the rooms these networks furnish do it too
+    allowance: Allowance = STRICT
 
     @cached_property
     def model_index(self) -> dict[str, int]:
@@ -97,6 +101,8 @@ def save_bundle(bundle: Bundle, path: str | Path) -> None:
         'cooccurrence': bundle.cooccurrence.to(torch.int32)}
     if bundle.spec is not None:
         data['room_type_spec'] = json.dumps(bundle.spec.to_dict())
+    if bundle.allowance != STRICT:
+        data['allowance'] = json.dumps(bundle.allowance.to_dict())
     for name in NETWORKS:
         data[name] = {k: (v.half() if v.is_floating_point() else v).contiguous()
                       for k, v in bundle.networks[name].state_dict().items()}
@@ -176,8 +182,10 @@ def load_bundle(path: str | Path, device: str | torch.device = 'cpu') -> Bundle:
                      for k, v in data[name].items()}
             nets[name].load_state_dict(state)
             nets[name].to(device).eval()
+        allowance = (Allowance.from_dict(json.loads(data['allowance']))
+                     if 'allowance' in data else STRICT)
         return Bundle(rt, cfg, nets, data['cooccurrence'].float(), json.loads(data['models']),
-                      json.loads(data.get('metrics', '{}')), spec)
+                      json.loads(data.get('metrics', '{}')), spec, allowance)
     except (KeyError, ValueError, RuntimeError, TypeError) as e:
         raise BundleError(f'{path}: weights do not match the networks of this version '
                           f'({type(e).__name__}: {str(e).splitlines()[0]})') from None

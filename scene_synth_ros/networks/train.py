@@ -18,6 +18,7 @@ import torch
 from torch import nn
 from tqdm import tqdm
 
+from ..allowance import STRICT
 from ..catalog import variants
 from ..categories import CORPUS, PAPER, Vocabulary
 from ..corpus.generate import generate_corpus
@@ -430,7 +431,8 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
     table = component_table(nets, val, cfg, device, rt)
     models, co = model_cooccurrence(rt, corpus.train, vocabulary)
     bundle = Bundle(rt, cfg, nets, co, models, {'components': table},
-                    vocabulary.spec(rt) if vocabulary.defines(rt) else None)
+                    vocabulary.spec(rt) if vocabulary.defines(rt) else None,
+                    describe_dir(data_dir).allowance if data_dir is not None else STRICT)
     for net in nets.values():
         net.to('cpu')
     out = Path(weights_dir) / f'{rt}.pt'
