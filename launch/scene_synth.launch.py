@@ -9,8 +9,8 @@ The parameters file is loaded first; room_type, marker_style and use_sim_time ar
 after it, so these three arguments always win over the file.
 """
 from launch import LaunchDescription
-from launch.actions import DeclareLaunchArgument
-from launch.conditions import IfCondition
+from launch.actions import DeclareLaunchArgument, IncludeLaunchDescription
+from launch.launch_description_sources import PythonLaunchDescriptionSource
 from launch.substitutions import LaunchConfiguration, PathJoinSubstitution
 from launch_ros.actions import Node
 from launch_ros.parameter_descriptions import ParameterValue
@@ -26,7 +26,7 @@ def generate_launch_description():
         DeclareLaunchArgument(
             'room_type', default_value='bedroom',
             description='room type of layouts arriving on ~/room_polygon: bedroom, living, '
-                        'office or bathroom (overrides params_file)'),
+                        'office, bathroom, kitchen, dining or hallway (overrides params_file)'),
         DeclareLaunchArgument(
             'params_file',
             default_value=PathJoinSubstitution([share, 'config', 'scene_synth_node.yaml']),
@@ -43,7 +43,8 @@ def generate_launch_description():
                         '(overrides params_file)'),
         DeclareLaunchArgument(
             'rviz', default_value='false',
-            description='also start RViz with the shipped rviz/scene_synth.rviz'),
+            description='also start RViz with the shipped rviz/scene_synth.rviz, where '
+                        'RViz is installed'),
     ]
 
     scene_synth = Node(
@@ -64,19 +65,12 @@ def generate_launch_description():
         ],
     )
 
-    # The .rviz file names the node's topics absolutely; remapping them to relative names
-    # makes RViz, started in the same namespace, follow the node into it (and changes
-    # nothing in the root namespace). No name= here: it would rename every node RViz runs.
-    rviz = Node(
-        package='rviz2',
-        executable='rviz2',
-        namespace=namespace,
-        output='screen',
-        arguments=['-d', PathJoinSubstitution([share, 'rviz', 'scene_synth.rviz'])],
-        parameters=[{'use_sim_time': use_sim_time}],
-        remappings=[('/scene_synth_node/markers', 'scene_synth_node/markers'),
-                    ('/scene_synth_node/poses', 'scene_synth_node/poses')],
-        condition=IfCondition(LaunchConfiguration('rviz')),
+    # RViz where it is installed (it is no dependency of the package): rviz.launch.py.
+    rviz = IncludeLaunchDescription(
+        PythonLaunchDescriptionSource(PathJoinSubstitution([share, 'launch',
+                                                            'rviz.launch.py'])),
+        launch_arguments={'rviz': LaunchConfiguration('rviz'), 'namespace': namespace,
+                          'use_sim_time': use_sim_time}.items(),
     )
 
     return LaunchDescription([*arguments, scene_synth, rviz])

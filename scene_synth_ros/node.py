@@ -3,15 +3,17 @@
     ros2 run scene_synth_ros scene_synth_node [--ros-args -p room_type:=office ...]
     python -m scene_synth_ros.node [--ros-args ...]        (without the ros2 tools)
 
-Subscriptions ~/room_layout (std_msgs/String, JSON or YAML) and ~/room_polygon
-(geometry_msgs/PolygonStamped); publications ~/markers, ~/poses, ~/scene (reliable, transient
-local) and /diagnostics; services ~/next_object, ~/generate, ~/reset, ~/suggest
-(std_srvs/Trigger, JSON in ``message``). This module only converts between messages and the
-server's calls.
+Subscriptions ~/room_layout (std_msgs/String, JSON or YAML; a layout latched before the
+node started is received too) and ~/room_polygon (geometry_msgs/PolygonStamped); publications
+~/markers, ~/poses, ~/scene (reliable, transient local) and /diagnostics; the action
+~/furnish (scene_synth_msgs/action/Furnish); typed services ~/insert_object,
+~/suggest_objects, ~/clear_objects (scene_synth_msgs/srv/...); and the services of the JSON
+interface ~/next_object, ~/generate, ~/reset, ~/suggest (std_srvs/Trigger, JSON in
+``message``). This module only converts between messages and the server's calls.
 """
 from __future__ import annotations
 
-import math
+from collections import deque
 import os
 from pathlib import Path
 import signal
@@ -20,7 +22,7 @@ import tempfile
 import threading
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
-from geometry_msgs.msg import Point, PolygonStamped, Pose, PoseArray
+from geometry_msgs.msg import Point, PolygonStamped, PoseArray
 from rcl_interfaces.msg import (
     FloatingPointRange,
     IntegerRange,
@@ -28,13 +30,17 @@ from rcl_interfaces.msg import (
     SetParametersResult,
 )
 import rclpy
+from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
 from rclpy.exceptions import InvalidParameterTypeException, InvalidParameterValueException
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 from rclpy.utilities import remove_ros_args
+from scene_synth_msgs.action import Furnish
+from scene_synth_msgs.srv import ClearObjects, InsertObject, SuggestObjects
 from std_msgs.msg import ColorRGBA, String
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker, MarkerArray
@@ -43,9 +49,18 @@ from .allocator import steady_allocator
 from .errors import SceneSynthError, sentence
 from .markers import scene_markers
 from .ros_client import LATCHED, RELIABLE
+from .ros_messages import (
+    layout_dict,
+    object_msg,
+    pose,
+    robot_radius_reach_clearance,
+    scene_msg,
+)
+from .rules.robot import Robot
 from .server import (
     PARAMETERS,
     REQUESTS,
+    Answer,
     ConfigError,
     SceneServer,
     Served,
@@ -83,6 +98,19 @@ FASTDDS_PROFILES = """<?xml version="1.0" encoding="UTF-8"?>
 _FASTDDS_SETTINGS = ('FASTRTPS_DEFAULT_PROFILES_FILE', 'FASTDDS_DEFAULT_PROFILES_FILE',
                      'RMW_FASTRTPS_USE_QOS_FROM_XML')
 
+# ~/room_layout as a simulator latches it at start-up: reliable and transient local, so a
+# layout published before the node was up still arrives. A second subscription, volatile,
+# hears the publishers that are (`ros2 topic pub` by default), which a transient-local one
+# would not match; a layout from a transient-local publisher arrives on both, once here.
+LATCHED_INPUT = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                           durability=DurabilityPolicy.TRANSIENT_LOCAL)
+# Layouts remembered to drop the second copy by: a handful in flight at most.
+SEEN_LAYOUTS = 64
+# The typed services, each with the request of ``server.REQUESTS`` it runs.
+TYPED_SERVICES = {'insert_object': (InsertObject, 'next_object'),
+                  'suggest_objects': (SuggestObjects, 'suggest'),
+                  'clear_objects': (ClearObjects, 'reset')}
+
 _KINDS = {'cube': Marker.CUBE, 'mesh': Marker.MESH_RESOURCE, 'text': Marker.TEXT_VIEW_FACING,
           'triangle_list': Marker.TRIANGLE_LIST}
 
@@ -95,28 +123,12 @@ def _descriptor(name: str) -> ParameterDescriptor:
     text, limits, read_only = PARAMETERS[name]
     d = ParameterDescriptor(description=text, read_only=read_only)
     if isinstance(limits, tuple) and limits and isinstance(limits[0], float):
-        # `ros2 param set location_temperature 1` sends an integer: rclpy refuses a type
-        # change unless typing is dynamic, and the server reads whole numbers as floats.
-        d.dynamic_typing = True
         d.floating_point_range = [FloatingPointRange(from_value=limits[0], to_value=limits[1])]
     elif isinstance(limits, tuple) and limits and isinstance(limits[0], int):
         d.integer_range = [IntegerRange(from_value=limits[0], to_value=limits[1], step=1)]
     elif isinstance(limits, tuple):
         d.additional_constraints = 'one of: ' + ', '.join(limits)
     return d
-
-
-def yaw_quaternion(yaw: float) -> tuple[float, float, float, float]:
-    """(x, y, z, w) of a rotation by ``yaw`` about +z."""
-    return 0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)
-
-
-def _pose(position, yaw: float) -> Pose:
-    p = Pose()
-    p.position.x, p.position.y, p.position.z = (float(v) for v in position)
-    (p.orientation.x, p.orientation.y, p.orientation.z,
-     p.orientation.w) = yaw_quaternion(float(yaw))
-    return p
 
 
 class SceneSynthNode(Node):
@@ -135,6 +147,7 @@ class SceneSynthNode(Node):
                                       self._log, self._show_next_seed)
         except SceneSynthError as e:
             raise StartupError(str(e)) from None
+        self.add_pre_set_parameters_callback(_as_floats)
         self.add_on_set_parameters_callback(self._on_parameters)
 
         inputs = MutuallyExclusiveCallbackGroup()
@@ -143,13 +156,22 @@ class SceneSynthNode(Node):
         self.poses_pub = self.create_publisher(PoseArray, '~/poses', LATCHED)
         self.scene_pub = self.create_publisher(String, '~/scene', LATCHED)
         self.diag_pub = self.create_publisher(DiagnosticArray, '/diagnostics', RELIABLE)
-        self.create_subscription(String, '~/room_layout', self._on_layout, RELIABLE,
-                                 callback_group=inputs)
+        self._seen_layouts: deque = deque(maxlen=SEEN_LAYOUTS)
+        for qos in (RELIABLE, LATCHED_INPUT):
+            self.create_subscription(String, '~/room_layout', self._on_layout, qos,
+                                     callback_group=inputs)
         self.create_subscription(PolygonStamped, '~/room_polygon', self._on_polygon, RELIABLE,
                                  callback_group=inputs)
         for kind in REQUESTS:
             self.create_service(Trigger, f'~/{kind}', self._service(kind),
                                 callback_group=services)
+        for name, (srv, kind) in TYPED_SERVICES.items():
+            self.create_service(srv, f'~/{name}', self._typed_service(kind),
+                                callback_group=services)
+        self.furnish_server = ActionServer(
+            self, Furnish, '~/furnish', self._furnish, callback_group=services,
+            goal_callback=lambda goal: GoalResponse.ACCEPT,
+            cancel_callback=lambda goal: CancelResponse.ACCEPT)
         self.create_timer(1.0, self._publish_diagnostics,
                           callback_group=MutuallyExclusiveCallbackGroup())
         self.get_logger().info(
@@ -160,7 +182,11 @@ class SceneSynthNode(Node):
             f'~/room_polygon')
 
     # ---- inputs ---------------------------------------------------------------------------
-    def _on_layout(self, msg: String) -> None:
+    def _on_layout(self, msg: String, info) -> None:
+        key = (info.get('source_timestamp'), info.get('publication_sequence_number'))
+        if key in self._seen_layouts:
+            return
+        self._seen_layouts.append(key)
         self.server.submit_layout(msg.data, 'room_layout')
 
     def _on_polygon(self, msg: PolygonStamped) -> None:
@@ -172,6 +198,56 @@ class SceneSynthNode(Node):
             response.success, response.message = self.server.request(kind)
             return response
         return call
+
+    def _typed_service(self, kind: str):
+        def call(request, response):
+            answer = self.server.call(
+                kind, seed=getattr(request, 'seed', None),
+                category=getattr(request, 'category', None) if kind == 'next_object' else None,
+                k=getattr(request, 'k', None), room=request.room)
+            response.success = answer.ok
+            response.message = '' if answer.ok else answer.message
+            if hasattr(response, 'seed'):
+                response.seed = -1 if answer.seed is None else answer.seed
+            if hasattr(response, 'objects'):
+                response.objects = [object_msg(o.to_dict()) for o in answer.objects]
+            elif hasattr(response, 'object') and answer.objects:
+                response.object = object_msg(answer.objects[0].to_dict())
+            return response
+        return call
+
+    def _furnish(self, goal_handle) -> Furnish.Result:
+        goal = goal_handle.request
+        result = Furnish.Result()
+        answer = self._furnish_goal(goal, goal_handle)
+        result.success = answer.ok
+        if answer.ok and answer.served is not None:
+            result.scene_json = answer.served.json
+            result.scene = scene_msg(answer.served.json, self.server.config.frame_id,
+                                     self.get_clock().now().to_msg())
+        else:
+            result.message = answer.message
+        if answer.ok:
+            goal_handle.succeed()
+        elif goal_handle.is_cancel_requested:
+            goal_handle.canceled()
+        else:
+            goal_handle.abort()
+        return result
+
+    def _furnish_goal(self, goal, goal_handle) -> Answer:
+        try:
+            stated = robot_radius_reach_clearance(goal.robot)
+            robot = None if stated is None else Robot(*stated)
+        except ValueError as e:
+            return Answer(False, sentence(e))
+
+        def told(obj, objects: int, seconds: float) -> None:
+            goal_handle.publish_feedback(Furnish.Feedback(
+                object=object_msg(obj.to_dict()), objects=objects, seconds=seconds))
+        return self.server.furnish(goal.layout_text or layout_dict(goal.layout),
+                                   seed=goal.seed, for_robot=robot, on_object=told,
+                                   cancelled=lambda: goal_handle.is_cancel_requested)
 
     def _on_parameters(self, params: list[Parameter]) -> SetParametersResult:
         # Parameters the node does not own (use_sim_time, what rclpy declares) pass through
@@ -210,7 +286,7 @@ class SceneSynthNode(Node):
                                   served.vocabulary):
             m = Marker(ns=spec.ns, id=spec.id, type=_KINDS[spec.kind], action=Marker.ADD)
             m.header.frame_id, m.header.stamp = cfg.frame_id, stamp
-            m.pose = _pose(spec.position, spec.yaw)
+            m.pose = pose(spec.position, spec.yaw)
             m.scale.x, m.scale.y, m.scale.z = (float(v) for v in spec.scale)
             m.color = ColorRGBA(r=spec.color[0], g=spec.color[1], b=spec.color[2],
                                 a=spec.color[3])
@@ -222,7 +298,7 @@ class SceneSynthNode(Node):
             array.markers.append(m)
         poses = PoseArray()
         poses.header.frame_id, poses.header.stamp = cfg.frame_id, stamp
-        poses.poses = [_pose(o.position, o.yaw) for o in served.scene.objects]
+        poses.poses = [pose(o.position, o.yaw) for o in served.scene.objects]
         self.markers_pub.publish(array)
         self.poses_pub.publish(poses)
         self.scene_pub.publish(String(data=served.json))
@@ -237,7 +313,8 @@ class SceneSynthNode(Node):
         array = DiagnosticArray()
         array.header.stamp = self.get_clock().now().to_msg()
         array.status = [DiagnosticStatus(
-            level=bytes([status.level]), name=f'{self.get_name()}: scene synthesis',
+            level=bytes([status.level]),
+            name=f'{self.get_fully_qualified_name()}: scene synthesis',
             message=status.message, hardware_id='scene_synth_ros',
             values=[KeyValue(key=k, value=v) for k, v in status.values().items()])]
         try:
@@ -259,7 +336,17 @@ class SceneSynthNode(Node):
 
     def destroy_node(self):
         self.server.close()
+        self.furnish_server.destroy()
         super().destroy_node()
+
+
+def _as_floats(params: list[Parameter]) -> list[Parameter]:
+    """`ros2 param set location_temperature 1` sends an integer: set the double it means,
+    so the parameter stays a double (describe, dump) and rclpy's type check passes."""
+    floats = {name for name, (_, limits, _) in PARAMETERS.items()
+              if isinstance(limits, tuple) and limits and isinstance(limits[0], float)}
+    return [Parameter(p.name, value=float(p.value))
+            if p.name in floats and p.type_ == Parameter.Type.INTEGER else p for p in params]
 
 
 def usage() -> str:

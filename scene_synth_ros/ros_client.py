@@ -31,6 +31,7 @@ from std_srvs.srv import Trigger
 from visualization_msgs.msg import MarkerArray
 
 from .errors import SceneSynthError
+from .ros_messages import quaternion_yaw
 from .schema import SceneValidationError, parse_room_layout, read_payload
 
 DEFAULT_NODE = '/scene_synth_node'
@@ -288,12 +289,6 @@ def _named(name, value):
 
 
 # ---- text renderings for the command line -----------------------------------------------
-def quaternion_yaw(q) -> float:
-    """Yaw of a rotation about +z only (the node's poses), the inverse of
-    ``node.yaw_quaternion``."""
-    return 2 * math.atan2(q.z, q.w)
-
-
 def format_markers(msg: MarkerArray) -> str:
     names = {0: 'ARROW', 1: 'CUBE', 9: 'TEXT', 10: 'MESH', 11: 'TRIANGLE_LIST'}
     lines = []

@@ -305,6 +305,30 @@ class _Job:
     ok: bool = False
     message: str = ''
     abandoned: bool = False               # its caller stopped waiting: do not run it
+    # What a typed request states itself (None: the node's parameters decide).
+    seed: int | None = None
+    category: str | None = None
+    k: int | None = None
+    robot: Robot | None = None
+    furnish: bool = False                 # a layout furnished whatever auto_generate says
+    on_object: Callable[[PlacedObject, int, float], None] | None = None
+    cancelled: Callable[[], bool] | None = None
+    # The typed answer: the room served, or the objects proposed or inserted.
+    served: Served | None = None
+    objects: list[PlacedObject] = field(default_factory=list)
+    used_seed: int | None = None
+
+
+@dataclass
+class Answer:
+    """What a request or a furnishing ended with: ``message`` is the JSON text the Trigger
+    services answer on success and one sentence on failure; the rest is typed."""
+
+    ok: bool
+    message: str
+    seed: int | None = None
+    objects: list[PlacedObject] = field(default_factory=list)
+    served: Served | None = None
 
 
 class SceneServer:
@@ -399,6 +423,35 @@ class SceneServer:
     def submit_layout(self, payload: Any, source: str = 'room_layout') -> bool:
         """Queue a room layout (JSON text or dict); False, with the reason on the status,
         when it is rejected."""
+        return isinstance(self._accept_layout(payload, source), _Job)
+
+    def furnish(self, payload: Any, seed: int | None = None, for_robot: Robot | None = None,
+                on_object: Callable[[PlacedObject, int, float], None] | None = None,
+                cancelled: Callable[[], bool] | None = None,
+                source: str = 'furnish') -> Answer:
+        """Furnish the room layout ``payload`` (JSON or YAML text, or a dict) and wait for
+        it, whatever ``auto_generate`` says: it becomes the current room, as a layout on the
+        topic does, and supersedes what came before. ``seed`` None takes the node's next
+        seed; ``for_robot`` None the node's robot. ``on_object(obj, objects, seconds)`` is told
+        of each object placed; ``cancelled()`` is asked between insertions."""
+        seed, wrong = _seed_arg(seed)
+        if wrong:
+            return Answer(False, wrong)
+        job = self._accept_layout(payload, source, seed=seed, robot=for_robot, furnish=True,
+                                  on_object=on_object, cancelled=cancelled)
+        if not isinstance(job, _Job):
+            return Answer(False, job)
+        with self._lock:
+            self._calls.append(job)
+        try:
+            job.done.wait()
+            return Answer(job.ok, job.message, job.used_seed, job.objects, job.served)
+        finally:
+            with self._lock:
+                self._calls.remove(job)
+
+    def _accept_layout(self, payload: Any, source: str, **what) -> _Job | str:
+        """The queued job of a room layout, or why it was rejected (also on the status)."""
         with self._lock:
             models, vocabulary = self._catalog, self._synth.vocabulary
         try:
@@ -406,10 +459,12 @@ class SceneServer:
             check_room_fits(scene.room, vocabulary)
         except SceneSynthError as e:
             self._reject(f'{source}: {e}')
-            return False
+            return sentence(e)
         with self._lock:
+            if self._closing:
+                return 'the node is shutting down'
             self._epoch += 1
-            self._queue('layout', scene=scene, source=source)
+            job = self._queue('layout', scene=scene, source=source, **what)
             # What was queued before it is for an older room: answered now, not after this
             # layout is furnished (it is served first).
             stale = [j for j in self._jobs if self._stale(j)]
@@ -417,7 +472,7 @@ class SceneServer:
         for old in stale:
             self._supersede(old)
             old.done.set()
-        return True
+        return job
 
     def submit_polygon(self, points, frame_id: str = '') -> bool:
         """Queue a bare floor outline ((x, y[, z]) points) as a room of the configured type
@@ -433,13 +488,38 @@ class SceneServer:
         return self.submit_layout(layout, 'room_polygon')
 
     def request(self, kind: str, timeout: float = SERVICE_TIMEOUT) -> tuple[bool, str]:
-        """Run one of ``REQUESTS`` on the current room; returns (success, JSON text or
-        reason). ``suggest`` answers proposals and changes nothing."""
+        """Run one of ``REQUESTS`` on the current room with the node's parameters; returns
+        (success, JSON text or reason). ``suggest`` answers proposals and changes nothing."""
+        answer = self.call(kind, timeout)
+        return answer.ok, answer.message
+
+    def call(self, kind: str, timeout: float = SERVICE_TIMEOUT, *, seed: int | None = None,
+             category: str | None = None, k: int | None = None, room: str = '') -> Answer:
+        """``request`` with its arguments stated, each None for the node's parameter:
+        ``seed`` (-1 too), ``category`` of ``next_object`` ('' lets the category module
+        choose), ``k`` proposals of ``suggest`` (0 too). ``room``, the room of a house, must
+        be '' while the node serves single rooms."""
         if kind not in REQUESTS:
             raise ValueError(f'unknown request {kind!r}')
+        if room:
+            return Answer(False, f'room {quoted(room)}: the node serves single rooms, which '
+                                 f'have no room ids; leave room empty')
+        seed, wrong = _seed_arg(seed)
+        if wrong:
+            return Answer(False, wrong)
+        if category:
+            try:
+                category = check('next_category', category, self._synth.vocabulary)
+            except ConfigError as e:
+                return Answer(False, str(e).replace('next_category', 'category', 1))
+        k = k or None
+        if k is not None and not 1 <= k <= PARAMETERS['suggestions'][1][1]:
+            return Answer(False, f'k {k} is out of range: 1 to '
+                                 f'{PARAMETERS["suggestions"][1][1]}, or 0 for the parameter '
+                                 f'suggestions')
         with self._lock:
             if self._closing:
-                return False, 'the node is shutting down'
+                return Answer(False, 'the node is shutting down')
             # The load policy: a bounded wait, never a queue that grows with the callers.
             # Each waiting call holds one of the executor's threads; when ``max_pending``
             # calls would be served before this one, the caller learns at once that it should
@@ -448,17 +528,19 @@ class SceneServer:
             ahead = sum(1 for j in self._calls if RANK[j.kind] <= RANK[kind])
             busy = ahead >= self.config.max_pending
             if not busy:
-                job = self._queue(kind)     # under the lock: close() either drains it or was first
+                # under the lock: close() either drains it or was first
+                job = self._queue(kind, seed=seed, category=category, k=k)
                 self._calls.append(job)
         if busy:
             self._set_status(increment='requests_busy')
-            return False, (f'busy: {ahead} requests are already waiting for the synthesis '
-                           f'worker ahead of this one (max_pending); call again shortly')
+            return Answer(False, f'busy: {ahead} requests are already waiting for the '
+                                 f'synthesis worker ahead of this one (max_pending); call '
+                                 f'again shortly')
         try:
             if not job.done.wait(timeout):
                 job.abandoned = True
-                return False, f'{kind} did not finish within {timeout:.0f} s'
-            return job.ok, job.message
+                return Answer(False, f'{kind} did not finish within {timeout:.0f} s')
+            return Answer(job.ok, job.message, job.used_seed, job.objects, job.served)
         finally:
             with self._lock:
                 self._calls.remove(job)
@@ -581,7 +663,7 @@ class SceneServer:
                                      vocabulary=synth.vocabulary))
             job.ok, job.message = True, '{"objects": 0}'
             return
-        if job.kind == 'layout' and not cfg.auto_generate:
+        if job.kind == 'layout' and not cfg.auto_generate and not job.furnish:
             scene = base.copy()
             scene.meta = {'generator': 'scene_synth_ros', 'seed': None, **base.meta}
             self._commit(job, Served(scene, job.source, None, catalog=models,
@@ -590,26 +672,32 @@ class SceneServer:
             return
         # This job's settings, passed with each call: the synthesizer is shared.
         settings = replace(synth.config, location_temperature=cfg.location_temperature,
-                           max_objects=cfg.max_objects, robot=robot_of(cfg), catalog=models)
-        seed = self._take_seed()
+                           max_objects=cfg.max_objects, robot=job.robot or robot_of(cfg),
+                           catalog=models)
+        # A seed the request states leaves the node's own sequence where it is.
+        seed = job.used_seed = self._take_seed() if job.seed is None else job.seed
         self._set_status(busy=True)
         try:
             if job.kind == 'next_object':
-                self._next_object(job, synth, base, seed, cfg.next_category, settings)
+                category = cfg.next_category if job.category is None else job.category
+                self._next_object(job, synth, base, seed, category, settings)
                 return
             if job.kind == 'suggest':
-                found = synth.suggest(base, cfg.suggestions, seed, config=settings)
-                job.ok = True
+                found = synth.suggest(base, job.k or cfg.suggestions, seed, config=settings)
+                job.ok, job.objects = True, found
                 job.message = _json({'seed': seed, 'objects': [o.to_dict() for o in found]})
                 return
             if job.kind == 'generate':
                 result = synth.complete(Scene(base.room, []), seed,
                                         cancel=lambda: self._between(job), config=settings)
             else:
-                result = synth.complete(base, seed, cancel=lambda: self._stale(job),
-                                        config=settings)
+                result = synth.complete(base, seed, cancel=lambda: self._stop_layout(job),
+                                        config=settings, on_object=self._progress(job, base))
         except SynthesisCancelled:
-            self._supersede(job)
+            if job.cancelled is not None and job.cancelled():
+                job.message = 'cancelled'
+            else:
+                self._supersede(job)
             return
         except SceneSynthError as e:
             self._reject(f'{job.source or job.kind}: {e}')
@@ -619,7 +707,7 @@ class SceneServer:
                         result.seconds, result.stopped, result.timings, robot=result.robot,
                         catalog=models, vocabulary=synth.vocabulary)
         if self._commit(job, served):
-            job.ok = True
+            job.ok, job.objects = True, result.added
             job.message = _json({'seed': seed, 'objects': len(result.scene),
                                  'added': [o.id for o in result.added],
                                  'stopped': result.stopped,
@@ -645,7 +733,27 @@ class SceneServer:
         if self._commit(job, Served(scene, 'next_object', seed, [obj],
                                    time.perf_counter() - t0, catalog=settings.catalog,
                                    vocabulary=synth.vocabulary)):
-            job.ok, job.message = True, _json(obj.to_dict())
+            job.ok, job.message, job.objects = True, _json(obj.to_dict()), [obj]
+
+    def _stop_layout(self, job: _Job) -> bool:
+        """Whether a layout's synthesis should stop now: a newer layout came, or its
+        caller cancelled it."""
+        return self._stale(job) or (job.cancelled is not None and bool(job.cancelled()))
+
+    @staticmethod
+    def _progress(job: _Job, base: Scene) -> Callable[[PlacedObject], None] | None:
+        """What synthesis tells of each object placed for ``job``, counted with the
+        layout's own objects."""
+        if job.on_object is None:
+            return None
+        t0, count = time.perf_counter(), itertools.count(len(base) + 1)
+
+        def told(obj: PlacedObject) -> None:
+            try:
+                job.on_object(obj, next(count), time.perf_counter() - t0)
+            except Exception:   # a caller gone (a goal whose client left) stops nothing
+                pass
+        return told
 
     def _take_seed(self) -> int:
         with self._lock:
@@ -666,7 +774,7 @@ class SceneServer:
         with self._lock:
             stale = self._stale(job)
             if not stale:
-                self._scene = served.scene
+                self._scene, job.served = served.scene, served
         if stale:
             self._supersede(job)
             return False
@@ -755,6 +863,15 @@ def in_catalog(scene: Scene, models: Catalog, vocabulary: Vocabulary = PAPER) ->
         o.category, o.width, o.depth, scene.room.room_type, vocabulary).model_id)
         for o in out.objects]
     return out
+
+
+def _seed_arg(seed: int | None) -> tuple[int | None, str]:
+    """A request's seed (None or negative: the node's next one), or why it is refused."""
+    if seed is None or seed < 0:
+        return None, ''
+    if seed >= 2**31:
+        return None, f'seed {seed} is out of range: 0 to {2**31 - 1}, or -1 for the next seed'
+    return seed, ''
 
 
 def _answered(meta: dict) -> dict:

@@ -44,7 +44,7 @@ from dataclasses import dataclass, field, replace
 import math
 from pathlib import Path
 import time
-from typing import Collection, Iterator
+from typing import Callable, Collection, Iterator
 
 import numpy as np
 import shapely
@@ -371,13 +371,16 @@ class Synthesizer:
         return self.complete(Scene(room, []), seed, cancel, config)
 
     def complete(self, scene: Scene, seed: int = 0, cancel=None,
-                 config: SynthConfig | None = None) -> Synthesis:
+                 config: SynthConfig | None = None,
+                 on_object: Callable[[PlacedObject], None] | None = None) -> Synthesis:
         """Add objects to ``scene`` (a copy; what is there stays) until the category module
         says STOP, ``max_objects`` is reached or nothing more fits.
 
         ``cancel``, a callable, is asked before every insertion; when it returns true the
         call raises ``SynthesisCancelled``. ``config``: the settings of this call alone
-        (default: the synthesizer's own; the device and runtime must be those)."""
+        (default: the synthesizer's own; the device and runtime must be those).
+        ``on_object`` is called with each object as it is added (the finished room may
+        withdraw some again: coffee tables whose seating never came)."""
         t0 = time.perf_counter()
         ctx = self._context(scene.room, seed, scene.objects, config)
         cfg = ctx.config
@@ -424,6 +427,8 @@ class Synthesizer:
                 added.append(obj)
                 if self.observer is not None:
                     self.observer.object_added(obj)
+                if on_object is not None:
+                    on_object(obj)
         self._withdraw(out, added, cfg.owed_partners)
         kept = robot.report(out, cfg.robot, self._robot_state(ctx, out))
         out.meta.update({'generator': 'scene_synth_ros', 'seed': int(seed),

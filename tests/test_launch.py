@@ -1,6 +1,7 @@
-"""launch/ and rviz/: `ros2 launch` and RViz cannot be installed here, so the files are read
-(Python AST, XML, YAML) and held against the node they start: its executable, parameters,
-topics, QoS and frame."""
+"""launch/ and rviz/, read (Python AST, XML, YAML) and held against the node they start: its
+executable, parameters, topics, QoS and frame. These run everywhere; `ros2 launch` itself
+runs them in tests/test_ros2_tools.py where the real ros2 tools are installed (RViz is not:
+it is no dependency of the package)."""
 import ast
 from pathlib import Path
 import re
@@ -19,8 +20,8 @@ RVIZ_TOPICS = [f'/{NODE_NAME}/markers', f'/{NODE_NAME}/poses']
 
 
 # ---- the Python launch file, read as a syntax tree ------------------------------------------
-def _launch_py():
-    return ast.parse((ROOT / 'launch' / 'scene_synth.launch.py').read_text())
+def _launch_py(name: str = 'scene_synth.launch.py'):
+    return ast.parse((ROOT / 'launch' / name).read_text())
 
 
 def _name(call: ast.Call) -> str:
@@ -62,9 +63,9 @@ def _arguments_in(node, names) -> set[str]:
     return {_text(c.args[0], names) for c in _calls(node, 'LaunchConfiguration')}
 
 
-def _py():
-    """What the .py declares and starts, in plain values."""
-    tree = _launch_py()
+def _py(name: str = 'scene_synth.launch.py'):
+    """What the .py declares, starts and includes, in plain values."""
+    tree = _launch_py(name)
     names = {t.id: a.value for a in ast.walk(tree) if isinstance(a, ast.Assign)
              for t in a.targets if isinstance(t, ast.Name)}
     args = {_text(c.args[0], names): c for c in _calls(tree, 'DeclareLaunchArgument')}
@@ -94,6 +95,12 @@ def _py():
         'used': {_text(c.args[0], names) for c in _calls(tree, 'LaunchConfiguration')},
         'paths': {_text(c, names) for c in _calls(tree, 'PathJoinSubstitution')},
         'nodes': nodes,
+        # included file -> {its argument: the launch arguments its value is made of}
+        'includes': {_text(c.args[0].args[0], names): {
+            _text(k, names): _arguments_in(v, names)
+            for k, v in zip(_kw(c, 'launch_arguments').func.value.keys,
+                            _kw(c, 'launch_arguments').func.value.values, strict=True)}
+            for c in _calls(tree, 'IncludeLaunchDescription')},
     }
 
 
@@ -145,8 +152,15 @@ def test_launch_defaults_are_the_shipped_parameters():
 
 
 def test_python_launch_starts_rviz_only_when_asked_with_the_shipped_config():
-    rviz = _py()['nodes']['rviz2']
-    assert rviz['exec'] == 'rviz2' and rviz['if'] == '$(var rviz)'
+    # Both launch files include rviz.launch.py, passing the three arguments it reads.
+    passed = {n: {n} for n in ('rviz', 'namespace', 'use_sim_time')}
+    assert _py()['includes'] == {SHARE + 'launch/rviz.launch.py': passed}
+    rviz_launch = _py('rviz.launch.py')
+    assert set(rviz_launch['defaults']) == rviz_launch['used'] == set(passed)
+    (only_if,) = _calls(_launch_py('rviz.launch.py'), 'OpaqueFunction')
+    assert _text(_kw(only_if, 'condition').args[0], {}) == '$(var rviz)'
+    rviz = rviz_launch['nodes']['rviz2']
+    assert rviz['exec'] == 'rviz2'
     assert rviz['args'] == ['-d', SHARE + 'rviz/scene_synth.rviz']
     assert rviz['namespace'] == '$(var namespace)'
     assert rviz['params'] == {'use_sim_time': {'use_sim_time'}}
@@ -168,6 +182,10 @@ def test_xml_launch_is_the_twin_of_the_python_one():
             for v in re.findall(r'\$\(var (\w+)\)', a)}
     assert used == ARGUMENTS
 
+    includes = {i.get('file'): {a.get('name'): set(re.findall(r'\$\(var (\w+)\)',
+                                                               a.get('value')))
+                                for a in i.findall('arg')} for i in root.findall('include')}
+    assert includes == py['includes']
     nodes = {n.get('pkg'): n for n in root.findall('node')}
     assert set(nodes) == set(py['nodes'])
     for pkg, node in nodes.items():

@@ -4,7 +4,6 @@ Every node gets a ROS domain of its own, so tests (and test runs) do not hear ea
 """
 from __future__ import annotations
 
-import ast
 from dataclasses import fields
 import itertools
 import json
@@ -424,107 +423,6 @@ def test_a_layout_typed_as_yaml_or_pasted_as_a_python_dict(node):
     diag = client.spin_until(lambda: (d := client.diagnostics()) and int(
         d['inputs rejected']) > rejected and d, 20.0, 'rejection')
     assert 'single quotes' in diag['last error']
-
-
-def _documented_ros2_commands(doc: str, heading: str) -> list[list[str]]:
-    """The argv of every ros2 command in the first bash block under ``heading`` of the
-    document ``doc``, as bash expands it (from the repository root, where its paths point)."""
-    root = Path(__file__).resolve().parent.parent
-    text = (root / doc).read_text()
-    block = text.split(heading + '\n', 1)[1].split('```bash', 1)[1]
-    lines = [line for line in block.split('```', 1)[0].splitlines()
-             if line.startswith('ros2 ')]
-    out = []
-    for line in lines:
-        r = subprocess.run(['bash', '-c', 'ros2() { printf "%s\\0" "$@"; }; ' + line],
-                           cwd=root, capture_output=True, text=True, timeout=30, check=True)
-        out.append(r.stdout.split('\0')[:-1])
-    return out
-
-
-def _as_ros2_would(client, argv: list[str]) -> str:
-    """Do what the ros2 verb does with these arguments (ros2cli is not installable here):
-    the message or parameter value is read as YAML, and a string field given a mapping gets
-    its Python repr (rosidl_runtime_py.set_message_fields)."""
-    from geometry_msgs.msg import Point32, PolygonStamped
-    from std_msgs.msg import String
-
-    from scene_synth_ros.ros_client import RELIABLE
-    if argv[:2] == ['topic', 'pub']:
-        topic, kind, values = argv[-3], argv[-2], yaml.safe_load(argv[-1])
-        if kind == 'std_msgs/msg/String':
-            data = values['data']
-            msg = String(data=data if isinstance(data, str) else str(data))
-        else:
-            assert kind == 'geometry_msgs/msg/PolygonStamped'
-            msg = PolygonStamped()
-            msg.header.frame_id = values['header']['frame_id']
-            msg.polygon.points = [Point32(**p) for p in values['polygon']['points']]
-        pub = client.node.create_publisher(type(msg), topic, RELIABLE)
-        client.spin_until(lambda: pub.get_subscription_count() > 0, 10.0, 'subscriber')
-        n = client.count('scene')
-        pub.publish(msg)
-        client.spin_until(lambda: client.count('scene') > n, 60.0, 'room')
-        return f'publishing #1: {type(msg).__name__}'
-    if argv[:2] == ['topic', 'echo']:
-        assert argv[-1] == client.target + '/scene' and '--field' in argv
-        return client.latest('scene').data
-    if argv[:2] == ['service', 'call']:
-        assert argv[-1] == 'std_srvs/srv/Trigger'
-        ok, message = client.call(argv[2].rsplit('/', 1)[1])
-        return f'success={ok} message={message!r}'
-    if argv[:2] == ['param', 'set']:
-        refused = client.set_parameters({argv[3]: yaml.safe_load(argv[4])})
-        return 'Set parameter successful' if not refused else refused[0]
-    assert argv[:2] == ['param', 'get']
-    return f'{client.get_parameters([argv[3]])[argv[3]]}'
-
-
-def _declared_launch_arguments() -> set[str]:
-    root = Path(__file__).resolve().parent.parent
-    tree = ast.parse((root / 'launch' / 'scene_synth.launch.py').read_text())
-    return {n.args[0].value for n in ast.walk(tree) if isinstance(n, ast.Call)
-            and getattr(n.func, 'id', None) == 'DeclareLaunchArgument'}
-
-
-def test_the_readme_quick_start_works(node):
-    """README.md's "ROS 2 in one minute": the launch names the shipped launch file and its
-    arguments; the publish, echo and service call do what the README says."""
-    client = node.client
-    # The README's commands are those of a node as it starts: the category an earlier test
-    # of this module's node asked for (and was refused) would still be asked for.
-    assert client.set_parameters({'next_category': ''}) == []
-    launch, *commands = _documented_ros2_commands('README.md', '## ROS 2 in one minute')
-    assert launch[:3] == ['launch', 'scene_synth_ros', 'scene_synth.launch.py']
-    assert {a.split(':=', 1)[0] for a in launch[3:]} <= _declared_launch_arguments()
-    assert [argv[:2] for argv in commands] == [['topic', 'pub'], ['topic', 'echo'],
-                                               ['service', 'call']]
-    answers = [_as_ros2_would(client, argv) for argv in commands]
-    scene = parse_scene(answers[1])                      # the furnished room as raw JSON
-    assert scene.room.room_type == 'bedroom' and scene.objects
-    assert answers[2].startswith('success=True')
-    assert json.loads(answers[2].split('message=', 1)[1][1:-1])['category']
-
-
-def test_the_node_guide_ros2_commands_work(node):
-    """Every command of docs/node.md's "From the ros2 command line" block."""
-    client = node.client
-    answers = []
-    for argv in _documented_ros2_commands('docs/node.md', '## From the ros2 command line'):
-        assert any(a.startswith(client.target + '/') or a == client.target for a in argv)
-        answers.append(_as_ros2_would(client, argv))
-        print('$ ros2', ' '.join(argv)[:150], '\n', answers[-1][:300])
-    services = [a for a in answers if a.startswith('success=')]
-    assert len(answers) == 13 and all(a.startswith('success=True') for a in services)
-    assert [a for a in answers if a.startswith('Set parameter')] == ['Set parameter successful'] * 4
-    scene = parse_scene(answers[3])                      # the echo: raw JSON of the polygon's room
-    assert scene.room.room_type == 'bedroom' and scene.room.area == pytest.approx(20.0)
-    chair = json.loads(services[1].split('message=', 1)[1][1:-1])
-    assert chair['category'] == 'office chair'
-    assert len(json.loads(services[2].split('message=', 1)[1][1:-1])['objects']) == 3
-    assert json.loads(services[3].split('message=', 1)[1][1:-1])['seed'] == 42
-    assert answers[-1] == '43'
-    assert client.set_parameters({'suggestions': 5}) == []
 
 
 def test_help_prints_the_usage_and_a_stray_argument_is_named():
