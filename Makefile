@@ -38,9 +38,9 @@ install: $(STAMP)
 MSGS := $(wildcard scene_synth_msgs/*.txt scene_synth_msgs/*.xml scene_synth_msgs/msg/* \
 	scene_synth_msgs/srv/* scene_synth_msgs/action/*) scripts/build_msgs.sh
 SHARE := $(VENV)/share/scene_synth_ros
-$(STAMP): requirements.txt setup.py setup.cfg package.xml $(MSGS) $(wildcard launch/*)
+$(STAMP): requirements.txt requirements-ros.txt setup.py setup.cfg package.xml $(MSGS) $(wildcard launch/*)
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
-	$(PY) -m pip install -q --disable-pip-version-check -r requirements.txt 2>&1 | { $(PIP_QUIET); }
+	$(PY) -m pip install -q --disable-pip-version-check -r requirements-ros.txt -r requirements.txt 2>&1 | { $(PIP_QUIET); }
 	scripts/build_msgs.sh $(VENV)
 	$(PY) -m pip install -q --disable-pip-version-check --no-deps --no-build-isolation --use-pep517 -e . 2>&1 | { $(PIP_QUIET); }
 	mkdir -p $(SHARE) $(VENV)/share/ament_index/resource_index/packages $(VENV)/lib/scene_synth_ros

@@ -3,15 +3,16 @@
     ros2 launch scene_synth_ros scene_synth.launch.py
     ros2 launch scene_synth_ros scene_synth.launch.py room_type:=office rviz:=true
     ros2 launch scene_synth_ros scene_synth.launch.py namespace:=sim use_sim_time:=true
+    ros2 launch scene_synth_ros scene_synth.launch.py lifecycle_manager:=true
     ros2 launch scene_synth_ros scene_synth.launch.py --show-args
 
-The parameters file is loaded first; room_type, marker_style and use_sim_time are set
-after it, so these three arguments always win over the file.
+The parameters file is loaded first; room_type, marker_style, use_sim_time and autostart
+(false under lifecycle_manager:=true) are set after it, so these arguments win over the file.
 """
 from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument, IncludeLaunchDescription
 from launch.launch_description_sources import PythonLaunchDescriptionSource
-from launch.substitutions import LaunchConfiguration, PathJoinSubstitution
+from launch.substitutions import LaunchConfiguration, NotSubstitution, PathJoinSubstitution
 from launch_ros.actions import Node
 from launch_ros.parameter_descriptions import ParameterValue
 from launch_ros.substitutions import FindPackageShare
@@ -42,6 +43,10 @@ def generate_launch_description():
             description='objects drawn as boxes (cube) or catalog meshes (mesh) '
                         '(overrides params_file)'),
         DeclareLaunchArgument(
+            'lifecycle_manager', default_value='false',
+            description="start nav2's lifecycle manager, which configures and activates the "
+                        'node (else it does so itself), where nav2 is installed'),
+        DeclareLaunchArgument(
             'rviz', default_value='false',
             description='also start RViz with the shipped rviz/scene_synth.rviz, where '
                         'RViz is installed'),
@@ -61,8 +66,17 @@ def generate_launch_description():
                 'marker_style': ParameterValue(LaunchConfiguration('marker_style'),
                                                value_type=str),
                 'use_sim_time': use_sim_time,
+                'autostart': NotSubstitution(LaunchConfiguration('lifecycle_manager')),
             },
         ],
+    )
+
+    # nav2's lifecycle manager where it is installed: lifecycle_manager.launch.py.
+    manager = IncludeLaunchDescription(
+        PythonLaunchDescriptionSource(PathJoinSubstitution([share, 'launch',
+                                                            'lifecycle_manager.launch.py'])),
+        launch_arguments={'lifecycle_manager': LaunchConfiguration('lifecycle_manager'),
+                          'namespace': namespace, 'use_sim_time': use_sim_time}.items(),
     )
 
     # RViz where it is installed (it is no dependency of the package): rviz.launch.py.
@@ -73,4 +87,4 @@ def generate_launch_description():
                           'use_sim_time': use_sim_time}.items(),
     )
 
-    return LaunchDescription([*arguments, scene_synth, rviz])
+    return LaunchDescription([*arguments, scene_synth, manager, rviz])

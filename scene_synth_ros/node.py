@@ -34,7 +34,7 @@ from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
 from rclpy.exceptions import InvalidParameterTypeException, InvalidParameterValueException
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
-from rclpy.node import Node
+from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
 from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
@@ -58,6 +58,8 @@ from .ros_messages import (
 )
 from .rules.robot import Robot
 from .server import (
+    ERROR,
+    OK,
     PARAMETERS,
     REQUESTS,
     Answer,
@@ -66,6 +68,7 @@ from .server import (
     Served,
     ServerConfig,
     Status,
+    check,
 )
 
 NODE_NAME = 'scene_synth_node'
@@ -131,55 +134,136 @@ def _descriptor(name: str) -> ParameterDescriptor:
     return d
 
 
-class SceneSynthNode(Node):
+class SceneSynthNode(LifecycleNode):
     def __init__(self, **kwargs):
         super().__init__(NODE_NAME, **kwargs)
         defaults = ServerConfig()
         self._updating_seed = threading.local()     # the node's own update of ``seed``
+        # A whole number given for a double at start-up (`-p location_temperature:=1`, a
+        # parameters file) is the double it means, as `_as_floats` makes it at run time:
+        # rclpy keeps the start-up overrides in this dictionary, read by declare_parameter.
+        overrides = getattr(self, '_parameter_overrides', {})
+        for p in _as_floats(list(overrides.values())):
+            overrides[p.name] = p
         try:
             for name in PARAMETERS:
                 self.declare_parameter(name, getattr(defaults, name), _descriptor(name))
         except (InvalidParameterTypeException, InvalidParameterValueException) as e:
             raise StartupError(str(e)) from None
+        self.add_pre_set_parameters_callback(_as_floats)
+        self.add_on_set_parameters_callback(self._on_parameters)
+        self.server: SceneServer | None = None      # made by configure, gone at cleanup
+        self._active = False
+        self._configure_error = ''
+        self._made: list = []                       # what configure creates
+        self._held_layout: tuple | None = None      # the last layout while inactive
+        self.finalized = threading.Event()          # shut down: the process may end
+        # Diagnostics in every state: a manager's operator sees an unconfigured node too.
+        self.diag_pub = self.create_publisher(DiagnosticArray, '/diagnostics', RELIABLE)
+        self.create_timer(1.0, self._publish_diagnostics,
+                          callback_group=MutuallyExclusiveCallbackGroup())
+
+    # ---- the lifecycle (nav2's: configure loads, activate serves) --------------------------
+    def on_configure(self, state) -> TransitionCallbackReturn:
         config = ServerConfig(**{n: self.get_parameter(n).value for n in PARAMETERS})
         try:
             self.server = SceneServer(config, self._publish_room, self._publish_diagnostics,
                                       self._log, self._show_next_seed)
         except SceneSynthError as e:
-            raise StartupError(str(e)) from None
-        self.add_pre_set_parameters_callback(_as_floats)
-        self.add_on_set_parameters_callback(self._on_parameters)
-
+            self._configure_error = sentence(e)
+            self._log('error', f'cannot configure: {e}')
+            return TransitionCallbackReturn.FAILURE
+        self._configure_error = ''
         inputs = MutuallyExclusiveCallbackGroup()
         services = ReentrantCallbackGroup()     # a waiting service must not block another
-        self.markers_pub = self.create_publisher(MarkerArray, '~/markers', LATCHED)
-        self.poses_pub = self.create_publisher(PoseArray, '~/poses', LATCHED)
-        self.scene_pub = self.create_publisher(String, '~/scene', LATCHED)
-        self.diag_pub = self.create_publisher(DiagnosticArray, '/diagnostics', RELIABLE)
+        self.markers_pub = self.create_lifecycle_publisher(MarkerArray, '~/markers', LATCHED)
+        self.poses_pub = self.create_lifecycle_publisher(PoseArray, '~/poses', LATCHED)
+        self.scene_pub = self.create_lifecycle_publisher(String, '~/scene', LATCHED)
         self._seen_layouts: deque = deque(maxlen=SEEN_LAYOUTS)
-        for qos in (RELIABLE, LATCHED_INPUT):
-            self.create_subscription(String, '~/room_layout', self._on_layout, qos,
-                                     callback_group=inputs)
-        self.create_subscription(PolygonStamped, '~/room_polygon', self._on_polygon, RELIABLE,
-                                 callback_group=inputs)
-        for kind in REQUESTS:
-            self.create_service(Trigger, f'~/{kind}', self._service(kind),
-                                callback_group=services)
-        for name, (srv, kind) in TYPED_SERVICES.items():
-            self.create_service(srv, f'~/{name}', self._typed_service(kind),
-                                callback_group=services)
-        self.furnish_server = ActionServer(
+        made = [self.create_subscription(String, '~/room_layout', self._on_layout, qos,
+                                         callback_group=inputs)
+                for qos in (RELIABLE, LATCHED_INPUT)]
+        made.append(self.create_subscription(PolygonStamped, '~/room_polygon',
+                                             self._on_polygon, RELIABLE, callback_group=inputs))
+        made += [self.create_service(Trigger, f'~/{kind}', self._service(kind),
+                                     callback_group=services) for kind in REQUESTS]
+        made += [self.create_service(srv, f'~/{name}', self._typed_service(kind),
+                                     callback_group=services)
+                 for name, (srv, kind) in TYPED_SERVICES.items()]
+        made.append(ActionServer(
             self, Furnish, '~/furnish', self._furnish, callback_group=services,
-            goal_callback=lambda goal: GoalResponse.ACCEPT,
-            cancel_callback=lambda goal: CancelResponse.ACCEPT)
-        self.create_timer(1.0, self._publish_diagnostics,
-                          callback_group=MutuallyExclusiveCallbackGroup())
+            goal_callback=self._goal_response,
+            cancel_callback=lambda goal: CancelResponse.ACCEPT))
+        self._made = made
         self.get_logger().info(
-            f'ready: {len(PARAMETERS)} parameters, weights from '
-            f'{config.weights_dir or "the package"}, models from '
+            f'configured: weights from {config.weights_dir or "the package"}, models from '
             f'{config.catalog_dir or "the procedural catalog"}, device {config.device}, '
-            f'torch threads {config.torch_threads}; waiting for ~/room_layout or '
-            f'~/room_polygon')
+            f'torch threads {config.torch_threads}')
+        return super().on_configure(state)
+
+    def on_activate(self, state) -> TransitionCallbackReturn:
+        done = super().on_activate(state)       # the lifecycle publishers
+        self._active = True
+        held, self._held_layout = self._held_layout, None
+        if held is not None:
+            self.server.submit_layout(*held)
+        self.get_logger().info(
+            f'ready: {len(PARAMETERS)} parameters; waiting for ~/room_layout, ~/room_polygon '
+            f'or a ~/furnish goal')
+        return done
+
+    def on_deactivate(self, state) -> TransitionCallbackReturn:
+        self._active = False
+        self.get_logger().info('deactivated: requests are refused until activated again')
+        return super().on_deactivate(state)
+
+    def on_cleanup(self, state) -> TransitionCallbackReturn:
+        self._release()
+        return super().on_cleanup(state)
+
+    def on_shutdown(self, state) -> TransitionCallbackReturn:
+        self._release()
+        self.finalized.set()        # a finalized node serves nothing again: the process ends
+        return super().on_shutdown(state)
+
+    def on_error(self, state) -> TransitionCallbackReturn:
+        self._release()
+        return super().on_error(state)
+
+    def _release(self) -> None:
+        """Undo configure: the server (its weights, its worker) and every endpoint."""
+        self._active = False
+        if self.server is not None:
+            self.server.close()
+        for thing in self._made:
+            if isinstance(thing, ActionServer):
+                thing.destroy()
+            elif hasattr(thing, 'srv_type'):
+                self.destroy_service(thing)
+            else:
+                self.destroy_subscription(thing)
+        for pub in ('markers_pub', 'poses_pub', 'scene_pub'):
+            if hasattr(self, pub):
+                self.destroy_lifecycle_publisher(getattr(self, pub))
+                delattr(self, pub)
+        self._made, self.server = [], None
+
+    def start(self) -> None:
+        """Configure and activate, as a lifecycle manager would (``autostart``);
+        StartupError with configure's sentence when it fails."""
+        if self.trigger_configure() != TransitionCallbackReturn.SUCCESS:
+            raise StartupError(self._configure_error or 'configure failed')
+        self.trigger_activate()
+
+    def _inactive(self) -> str:
+        """Why a request is refused now, or '' when the node serves."""
+        if self._active:
+            return ''
+        return f'{self.get_fully_qualified_name()} is inactive: activate it to serve ' \
+               f'(ros2 lifecycle set {self.get_fully_qualified_name()} activate)'
+
+    def _goal_response(self, goal) -> GoalResponse:
+        return GoalResponse.ACCEPT if self._active else GoalResponse.REJECT
 
     # ---- inputs ---------------------------------------------------------------------------
     def _on_layout(self, msg: String, info) -> None:
@@ -187,20 +271,28 @@ class SceneSynthNode(Node):
         if key in self._seen_layouts:
             return
         self._seen_layouts.append(key)
+        if not self._active:        # kept for activation: a simulator latched it at start-up
+            self._held_layout = (msg.data, 'room_layout')
+            return
         self.server.submit_layout(msg.data, 'room_layout')
 
     def _on_polygon(self, msg: PolygonStamped) -> None:
-        self.server.submit_polygon([(p.x, p.y, p.z) for p in msg.polygon.points],
-                                   msg.header.frame_id)
+        if self._active:
+            self.server.submit_polygon([(p.x, p.y, p.z) for p in msg.polygon.points],
+                                       msg.header.frame_id)
 
     def _service(self, kind: str):
         def call(request, response):
-            response.success, response.message = self.server.request(kind)
+            response.success, response.message = (
+                (False, self._inactive()) if self._inactive() else self.server.request(kind))
             return response
         return call
 
     def _typed_service(self, kind: str):
         def call(request, response):
+            if self._inactive():
+                response.success, response.message = False, self._inactive()
+                return response
             answer = self.server.call(
                 kind, seed=getattr(request, 'seed', None),
                 category=getattr(request, 'category', None) if kind == 'next_object' else None,
@@ -257,7 +349,11 @@ class SceneSynthNode(Node):
         if not ours:
             return SetParametersResult(successful=True)
         try:
-            self.server.reconfigure(ours)
+            if self.server is None:     # unconfigured: configure reads and checks them all
+                for name, value in ours.items():
+                    check(name, value)
+            else:
+                self.server.reconfigure(ours)
         except ConfigError as e:
             self._log('warn', f'parameter change refused: {e}')
             return SetParametersResult(successful=False, reason=str(e))
@@ -309,6 +405,10 @@ class SceneSynthNode(Node):
             f'{added}{seed}')
 
     def _publish_diagnostics(self, status: Status | None = None) -> None:
+        if status is None and self.server is None:
+            status = Status(level=ERROR if self._configure_error else OK,
+                            message=self._configure_error or 'unconfigured: waiting for a '
+                            'lifecycle manager to configure it')
         status = status or self.server.status
         array = DiagnosticArray()
         array.header.stamp = self.get_clock().now().to_msg()
@@ -335,8 +435,7 @@ class SceneSynthNode(Node):
             logger.info(text)
 
     def destroy_node(self):
-        self.server.close()
-        self.furnish_server.destroy()
+        self._release()
         super().destroy_node()
 
 
@@ -357,7 +456,8 @@ def usage() -> str:
              f'--params-file FILE -r __ns:=/NAMESPACE]',
              '',
              'Furnishes empty rooms (Ritchie et al., CVPR 2019). Names starting with ~/ are',
-             f'under the node: /{NODE_NAME}/... by default.',
+             f'under the node: /{NODE_NAME}/... by default. A lifecycle node: it configures',
+             'and activates itself unless autostart is false (then: ros2 lifecycle set).',
              '', 'parameters (default; ros2 param describe tells more):']
     for name, (text, _, read_only) in PARAMETERS.items():
         value = getattr(defaults, name)
@@ -366,7 +466,8 @@ def usage() -> str:
         lines.append(f'  {name} ({shown}{", read-only" if read_only else ""}): {text}')
     lines += ['', 'subscriptions:',
               '  ~/room_layout   std_msgs/String: a room layout as JSON or YAML '
-              '(msg_schemas/room_layout.schema.json)',
+              '(msg_schemas/room_layout.schema.json);',
+              '                  reliable, also latched (transient local) before the start',
               '  ~/room_polygon  geometry_msgs/PolygonStamped: a floor outline of room_type',
               '', 'publications:',
               '  ~/scene         std_msgs/String: the furnished room as JSON',
@@ -374,7 +475,15 @@ def usage() -> str:
               '  ~/poses         geometry_msgs/PoseArray: one pose per object',
               '                  (these three reliable and transient local, depth 1)',
               '  /diagnostics    diagnostic_msgs/DiagnosticArray, once a second',
-              '', 'services (std_srvs/Trigger; the answer is JSON in message):',
+              '', 'action (ros2 interface show scene_synth_msgs/action/Furnish):',
+              '  ~/furnish       furnish a layout (typed or as text) with a seed and a robot;',
+              '                  feedback per object placed, the scene as the result',
+              '', 'typed services (scene_synth_msgs/srv/...; the request carries its arguments):',
+              '  ~/insert_object    InsertObject: one more object (category, seed)',
+              '  ~/suggest_objects  SuggestObjects: k proposals (k, seed), changing nothing',
+              '  ~/clear_objects    ClearObjects: remove every object',
+              '', 'services of the JSON interface (std_srvs/Trigger; the answer is JSON in '
+              'message):',
               '  ~/generate      furnish the current room again from empty, with the next seed',
               '  ~/next_object   insert one object (of next_category, if set)',
               '  ~/suggest       propose `suggestions` objects, changing nothing',
@@ -437,14 +546,17 @@ def main(args: list[str] | None = None) -> int:
         finally:
             if profile is not None:        # read by now: no file left behind
                 profile.unlink(missing_ok=True)
+        if node.get_parameter('autostart').value:
+            node.start()
         executor = MultiThreadedExecutor(num_threads=EXECUTOR_THREADS)
         executor.add_node(node)
-        while not stop.is_set() and rclpy.ok():
+        while not stop.is_set() and not node.finalized.is_set() and rclpy.ok():
             executor.spin_once(timeout_sec=0.2)
         node.get_logger().info('shutting down')
         # Answer the calls waiting for the worker first: their callbacks hold the executor's
         # threads, which its shutdown waits for.
-        node.server.close(timeout=1.5)
+        if node.server is not None:
+            node.server.close(timeout=1.5)
         # Then let the callbacks just answered send their responses before the node goes:
         # one still sending when it is destroyed fails with "cannot use Destroyable", which
         # Python prints at exit as an exception never retrieved. Executor.shutdown is meant

@@ -20,18 +20,21 @@ from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Point32, PolygonStamped, PoseArray
 from rcl_interfaces.msg import Parameter as ParameterMsg
 import rclpy
+from rclpy.action import ActionClient
 from rclpy.context import Context
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.parameter import Parameter
 from rclpy.parameter_client import AsyncParameterClient
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
+from scene_synth_msgs.action import Furnish
+from scene_synth_msgs.srv import ClearObjects, InsertObject, SuggestObjects
 from std_msgs.msg import String
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import MarkerArray
 
 from .errors import SceneSynthError
-from .ros_messages import quaternion_yaw
+from .ros_messages import object_dict, quaternion_yaw
 from .schema import SceneValidationError, parse_room_layout, read_payload
 
 DEFAULT_NODE = '/scene_synth_node'
@@ -43,10 +46,19 @@ LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
 # Room layouts in and diagnostics out: none may be lost.
 RELIABLE = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
+# Layouts out, transient local as a simulator publishes them: they match both of the node's
+# subscriptions to ~/room_layout without a warning about the latched one (a volatile
+# publisher gets one, and its layouts still arrive). As deep as RELIABLE: none replaced
+# before it is delivered.
+LAYOUTS = QoSProfile(depth=RELIABLE.depth, reliability=ReliabilityPolicy.RELIABLE,
+                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
 TOPICS = {'scene': String, 'markers': MarkerArray, 'poses': PoseArray}
 # The node's std_srvs/Trigger services (``server.REQUESTS``; this module does not import the
 # library behind the node).
 SERVICES = ('generate', 'next_object', 'reset', 'suggest')
+# The typed services (node.TYPED_SERVICES).
+TYPED = {'insert_object': InsertObject, 'suggest_objects': SuggestObjects,
+         'clear_objects': ClearObjects}
 
 
 class ClientError(SceneSynthError):
@@ -77,11 +89,14 @@ class SceneSynthClient:
         self.node.create_subscription(DiagnosticArray, '/diagnostics',
                                       self._keeper('diagnostics'), RELIABLE)
         self._layout_pub = self.node.create_publisher(String, f'{self.target}/room_layout',
-                                                      RELIABLE)
+                                                      LAYOUTS)
         self._polygon_pub = self.node.create_publisher(
             PolygonStamped, f'{self.target}/room_polygon', RELIABLE)
         self._services = {k: self.node.create_client(Trigger, f'{self.target}/{k}')
                           for k in SERVICES}
+        self._typed = {k: self.node.create_client(t, f'{self.target}/{k}')
+                       for k, t in TYPED.items()}
+        self._furnish = ActionClient(self.node, Furnish, f'{self.target}/furnish')
         self._params = AsyncParameterClient(self.node, self.target)
 
     def _keeper(self, topic: str):
@@ -117,6 +132,8 @@ class SceneSynthClient:
     def ready(self) -> bool:
         """Whether the node's services and subscriptions are discovered (no spinning)."""
         return (all(c.service_is_ready() for c in self._services.values())
+                and all(c.service_is_ready() for c in self._typed.values())
+                and self._furnish.server_is_ready()
                 and self._layout_pub.get_subscription_count() > 0
                 and self._polygon_pub.get_subscription_count() > 0)
 
@@ -146,7 +163,7 @@ class SceneSynthClient:
         def mine():
             for _, _, msg in reversed(self.received['diagnostics']):
                 for st in msg.status:
-                    if st.name.startswith(self.target.rsplit('/', 1)[-1] + ':'):
+                    if st.name.startswith(self.target + ':'):
                         d = {kv.key: kv.value for kv in st.values}
                         d.update(level=str(ord(st.level)), message=st.message)
                         return d
@@ -232,30 +249,63 @@ class SceneSynthClient:
             self.spin_until(lambda u=until: time.monotonic() > u, pause * 2, 'pause')
             pause = min(pause * 2, 0.5)
 
-    # The services take no arguments (std_srvs/Trigger): what shapes a request is the node's
-    # parameters, set just before the call.
+    def furnish(self, layout: str | dict, seed: int | None = None,
+                feedback=None, timeout: float = 120.0) -> dict[str, Any]:
+        """Furnish a room layout (JSON or YAML text, or a dict) through the ~/furnish
+        action, with ``seed`` or the node's next one; ``feedback(msg)`` is called with each
+        Furnish.Feedback (an object placed). The furnished room as a scene dict."""
+        text = layout if isinstance(layout, str) else json.dumps(layout)
+        self.spin_until(self._furnish.server_is_ready, min(timeout, 30.0), 'furnish action')
+        goal = Furnish.Goal(layout_text=text, seed=-1 if seed is None else seed)
+        sent = self._furnish.send_goal_async(
+            goal, feedback_callback=None if feedback is None else
+            (lambda m: feedback(m.feedback)))
+        self.spin_until(sent.done, timeout, 'furnish goal response')
+        result = sent.result().get_result_async()
+        self.spin_until(result.done, timeout, 'furnish result')
+        answer = result.result().result
+        if not answer.success:
+            raise ClientError(f'furnish refused: {answer.message}')
+        return json.loads(answer.scene_json)
+
+    def _typed_call(self, service: str, request, timeout: float):
+        client = self._typed[service]
+        self.spin_until(client.service_is_ready, min(timeout, 30.0), f'{service} service')
+        future = client.call_async(request)
+        self.spin_until(future.done, timeout, f'{service} response')
+        response = future.result()
+        if not response.success:
+            raise ClientError(f'{service} refused: {response.message}')
+        return response
+
+    def next_object(self, category: str | None = None, seed: int | None = None,
+                    timeout: float = 120.0) -> dict[str, Any]:
+        """Insert one object, of ``category`` or of the category module's choice, with
+        ``seed`` or the node's next one; the new object as a dict."""
+        response = self._typed_call('insert_object', InsertObject.Request(
+            category=category or '', seed=-1 if seed is None else seed), timeout)
+        return object_dict(response.object)
+
+    def suggest(self, k: int | None = None, seed: int | None = None,
+                timeout: float = 120.0) -> list[dict[str, Any]]:
+        """``k`` (or the node's ``suggestions``) proposals for the next object, as dicts;
+        the room does not change."""
+        response = self._typed_call('suggest_objects', SuggestObjects.Request(
+            k=k or 0, seed=-1 if seed is None else seed), timeout)
+        return [object_dict(o) for o in response.objects]
+
+    def reset(self, timeout: float = 120.0) -> dict[str, Any]:
+        """Remove every object from the current room."""
+        self._typed_call('clear_objects', ClearObjects.Request(), timeout)
+        return {'objects': 0}
+
+    # Generate has no typed service (the action furnishes a layout): it is shaped by the
+    # node's parameters, set just before the call.
     def generate(self, seed: int | None = None, timeout: float = 120.0) -> dict[str, Any]:
         """Furnish the current room again from empty, with ``seed`` or the node's next one;
         the answer's JSON (seed, objects, added, ...)."""
         return self._call_with({'seed': seed} if seed is not None else {}, 'generate',
                                timeout)
-
-    def next_object(self, category: str | None = None,
-                    timeout: float = 120.0) -> dict[str, Any]:
-        """Insert one object, of ``category`` or of the category module's choice; the new
-        object as a dict."""
-        return self._call_with({'next_category': category or ''}, 'next_object', timeout)
-
-    def suggest(self, k: int | None = None, timeout: float = 120.0) -> list[dict[str, Any]]:
-        """``k`` (or the node's ``suggestions``) proposals for the next object, as dicts;
-        the room does not change."""
-        answer = self._call_with({'suggestions': k} if k is not None else {}, 'suggest',
-                                 timeout)
-        return answer['objects']
-
-    def reset(self, timeout: float = 120.0) -> dict[str, Any]:
-        """Remove every object from the current room."""
-        return self._call_with({}, 'reset', timeout)
 
     def _call_with(self, params: dict[str, Any], service: str, timeout: float) -> Any:
         refused = self.set_parameters(params, timeout) if params else []

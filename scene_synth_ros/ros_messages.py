@@ -43,16 +43,14 @@ def pose(position, yaw: float) -> Pose:
 # ---- messages -> the JSON forms the library parses ------------------------------------------
 def object_dict(msg: PlacedObject) -> dict[str, Any]:
     """A ``placed_object.schema.json`` object of ``msg``; empty id and model id are left for
-    the parser to fill."""
+    the parser to fill, an empty support is none (the object stands on the floor)."""
     p = msg.pose.position
     d: dict[str, Any] = {'category': msg.category, 'position': [p.x, p.y, p.z],
                          'yaw': quaternion_yaw(msg.pose.orientation),
-                         'size': [msg.size.x, msg.size.y, msg.size.z],
-                         'support': msg.support or None}
-    if msg.id:
-        d['id'] = msg.id
-    if msg.model_id:
-        d['model_id'] = msg.model_id
+                         'size': [msg.size.x, msg.size.y, msg.size.z]}
+    for key, value in (('id', msg.id), ('model_id', msg.model_id), ('support', msg.support)):
+        if value:
+            d[key] = value
     return d
 
 

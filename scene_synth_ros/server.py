@@ -85,6 +85,10 @@ class ServerConfig:
     marker_style: str = setting('cube', 'objects as boxes (cube) or catalog meshes (mesh)',
                                 choices=MARKER_STYLES)
     auto_generate: bool = setting(True, 'furnish a room as soon as its layout arrives')
+    autostart: bool = setting(
+        True, 'configure and activate the node as it starts; false: it waits, unconfigured, '
+        'for a lifecycle manager (ros2 lifecycle set, nav2 lifecycle_manager)',
+        read_only=True)
     wall_height: float = setting(2.6, 'wall height of rooms arriving on ~/room_polygon (m)',
                                  bounds=(1.8, 6.0))
     export_dir: str = setting(

@@ -220,6 +220,13 @@ def test_home_tables_tiny(tmp_path):
 
 
 @pytest.mark.slow
+@pytest.mark.slow
+def test_node_startup_tiny():
+    out = run('node_startup.py', '-n', '1', '--rooms', '1')
+    rows = [line for line in out.splitlines() if 'median' in line]
+    assert [r.split()[0] for r in rows] == ['start-up', 'first', 'typical'], out
+
+
 def test_size_bands_tiny():
     out = run('size_bands.py', '-n', '1', '--room-type', 'bathroom')
     lines = [line for line in out.splitlines() if line.startswith('bathroom')]

@@ -14,7 +14,8 @@ from scene_synth_ros.ros_client import LATCHED, TOPICS
 from scene_synth_ros.server import PARAMETERS, ServerConfig
 
 ROOT = Path(__file__).resolve().parent.parent
-ARGUMENTS = {'room_type', 'params_file', 'use_sim_time', 'namespace', 'marker_style', 'rviz'}
+ARGUMENTS = {'room_type', 'params_file', 'use_sim_time', 'namespace', 'marker_style', 'rviz',
+             'lifecycle_manager'}
 SHARE = '$(find-pkg-share scene_synth_ros)/'
 RVIZ_TOPICS = [f'/{NODE_NAME}/markers', f'/{NODE_NAME}/poses']
 
@@ -132,8 +133,10 @@ def test_python_launch_starts_the_real_node_with_its_real_parameters():
     # The file first, the explicit arguments after it (the later value wins).
     assert node['files'] == ['$(var params_file)'] and node['order'] == ['file', 'dict']
     assert set(node['params']) <= set(PARAMETERS) | {'use_sim_time'}
-    # Each parameter is set from the launch argument of its own name.
-    assert node['params'] == {n: {n} for n in ('room_type', 'marker_style', 'use_sim_time')}
+    # Each parameter is set from the launch argument of its own name; autostart unless a
+    # lifecycle manager starts it.
+    assert node['params'] == {**{n: {n} for n in ('room_type', 'marker_style', 'use_sim_time')},
+                              'autostart': {'lifecycle_manager'}}
     for path in py['paths']:
         assert path.startswith(SHARE) and (ROOT / path.removeprefix(SHARE)).is_file(), path
     assert py['defaults']['params_file'] == SHARE + 'config/scene_synth_node.yaml'
@@ -152,9 +155,16 @@ def test_launch_defaults_are_the_shipped_parameters():
 
 
 def test_python_launch_starts_rviz_only_when_asked_with_the_shipped_config():
-    # Both launch files include rviz.launch.py, passing the three arguments it reads.
+    # Both launch files include rviz.launch.py (and lifecycle_manager.launch.py), passing
+    # the three arguments each reads.
     passed = {n: {n} for n in ('rviz', 'namespace', 'use_sim_time')}
-    assert _py()['includes'] == {SHARE + 'launch/rviz.launch.py': passed}
+    assert _py()['includes'] == {
+        SHARE + 'launch/rviz.launch.py': passed,
+        SHARE + 'launch/lifecycle_manager.launch.py': {
+            n: {n} for n in ('lifecycle_manager', 'namespace', 'use_sim_time')}}
+    managed = _py('lifecycle_manager.launch.py')
+    assert set(managed['defaults']) == managed['used'] == {'lifecycle_manager', 'namespace',
+                                                           'use_sim_time'}
     rviz_launch = _py('rviz.launch.py')
     assert set(rviz_launch['defaults']) == rviz_launch['used'] == set(passed)
     (only_if,) = _calls(_launch_py('rviz.launch.py'), 'OpaqueFunction')

@@ -18,7 +18,10 @@ import sys
 import time
 from xml.etree import ElementTree as ET
 
+from action_msgs.msg import GoalStatus
 import pytest
+from scene_synth_msgs.action import Furnish
+from scene_synth_msgs.msg import Robot
 import yaml
 
 os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'   # before any rclpy.init
@@ -34,6 +37,7 @@ from scene_synth_ros.ros_client import (  # noqa: E402
     start_node,
     stop_node,
 )
+from scene_synth_ros.ros_messages import room_msg  # noqa: E402
 from scene_synth_ros.schema import parse_room_layout, parse_scene  # noqa: E402
 
 pytestmark = pytest.mark.slow     # every test here starts node processes
@@ -368,11 +372,13 @@ def test_parameters_rclpy_owns_pass_through_and_a_dump_loads_back(node):
     dump = client.get_parameters(names)
     assert client.set_parameters(dump) == []
     assert client.get_parameters(names) == dump
-    # A whole number for a double is taken (rclpy refuses a type change without dynamic
-    # typing); a text is not.
+    # A whole number for a double is taken as the double it means, which the parameter
+    # stays (`ros2 param set ... location_temperature 1`); a text is refused by its type.
     assert client.set_parameters({'location_temperature': 1}) == []
+    value = client.get_parameters(['location_temperature'])['location_temperature']
+    assert value == 1.0 and isinstance(value, float)
     refused = client.set_parameters({'location_temperature': 'warm'})
-    assert refused and 'must be a number' in refused[0]
+    assert refused and 'expected' in refused[0] and 'DOUBLE' in refused[0]
     assert client.set_parameters({'location_temperature': 0.8}) == []
 
 
@@ -391,9 +397,10 @@ def test_the_seed_parameter_shows_the_next_seed_and_requests_take_arguments(node
     n = client.count('scene')
     chair = client.next_object(category='office_chair')
     assert chair['category'] == 'office chair'
-    assert client.wait_scene(n)['objects'] == [chair]
-    assert client.get_parameters(['next_category'])['next_category'] == 'office_chair'
+    (served,) = client.wait_scene(n)['objects']
+    assert served['id'] == chair['id'] and served['position'] == pytest.approx(chair['position'])
     assert client.next_object()['id'] != chair['id']          # the model chooses again
+    # The typed requests carry their arguments: nothing was set on the node.
     assert client.get_parameters(['next_category'])['next_category'] == ''
     with pytest.raises(ClientError, match='toilet.* is not a category of bedroom'):
         client.next_object(category='toilet')
@@ -423,6 +430,123 @@ def test_a_layout_typed_as_yaml_or_pasted_as_a_python_dict(node):
     diag = client.spin_until(lambda: (d := client.diagnostics()) and int(
         d['inputs rejected']) > rejected and d, 20.0, 'rejection')
     assert 'single quotes' in diag['last error']
+
+
+def test_the_furnish_action_tells_each_object_and_answers_the_room(node):
+    client = node.client
+    seed = client.get_parameters(['seed'])['seed']
+    told = []
+    room = client.furnish(LAYOUT, seed=11, feedback=told.append)
+    assert room['meta']['seed'] == 11 and room['objects']
+    # One feedback per object placed, counting up; the room keeps what it did not withdraw.
+    assert [f.objects for f in told] == list(range(1, len(told) + 1))
+    assert {o['id'] for o in room['objects']} <= {f.object.id for f in told}
+    assert all(f.seconds > 0 for f in told)
+    # The same seed gives the same room; a seed stated leaves the node's sequence alone.
+    assert client.furnish(LAYOUT, seed=11)['objects'] == room['objects']
+    assert client.get_parameters(['seed'])['seed'] == seed
+    # A typed layout furnishes as its text does.
+    goal = Furnish.Goal(layout=room_msg(json.loads(LAYOUT)), seed=11)
+    status, result = _furnish_goal(client, goal)
+    assert status == GoalStatus.STATUS_SUCCEEDED and result.success
+    typed = json.loads(result.scene_json)['objects']
+    # (geometry_msgs/Polygon holds float32 vertices: the same room to a micrometre)
+    assert [o['id'] for o in typed] == [o['id'] for o in room['objects']]
+    assert [c for o in typed for c in o['position']] == pytest.approx(
+        [c for o in room['objects'] for c in o['position']], abs=1e-4)
+    assert [o.id for o in result.scene.objects] == [o['id'] for o in room['objects']]
+    assert result.scene.seed == 11 and result.scene.header.frame_id == 'map'
+    # Bad input is refused in one sentence and the goal aborts; the node serves on.
+    status, result = _furnish_goal(client, Furnish.Goal(layout_text='{room_type: bedroom}'))
+    assert status == GoalStatus.STATUS_ABORTED and not result.success
+    assert 'floor' in result.message and len(result.message) <= MAX_SENTENCE
+    status, result = _furnish_goal(client, Furnish.Goal(
+        layout_text=LAYOUT, robot=Robot(radius=5.0, reach=1.0, clearance=0.0)))
+    assert status == GoalStatus.STATUS_ABORTED and 'radius' in result.message
+
+
+def _furnish_goal(client, goal, on_feedback=None, timeout: float = 60.0):
+    """(status, result) of one ~/furnish goal; ``on_feedback(handle, feedback)``."""
+    handle = None
+
+    def feedback(msg):
+        if on_feedback is not None:
+            on_feedback(handle, msg.feedback)
+    sent = client._furnish.send_goal_async(goal, feedback_callback=feedback)
+    client.spin_until(sent.done, timeout, 'goal response')
+    handle = sent.result()
+    assert handle.accepted
+    done = handle.get_result_async()
+    client.spin_until(done.done, timeout, 'result')
+    return done.result().status, done.result().result
+
+
+def test_a_furnish_goal_is_cancelled_or_superseded_between_insertions(node):
+    client = node.client
+    big = L_LAYOUT
+
+    def cancel_at_first(handle, feedback):
+        if feedback.objects == 1:
+            handle.cancel_goal_async()
+    status, result = _furnish_goal(client, Furnish.Goal(layout_text=big, seed=3),
+                                   cancel_at_first)
+    assert status == GoalStatus.STATUS_CANCELED and result.message == 'cancelled'
+
+    def supersede_at_first(handle, feedback):
+        if feedback.objects == 1:
+            client.publish_layout(LAYOUT, wait=False)
+    n = client.count('scene')
+    status, result = _furnish_goal(client, Furnish.Goal(layout_text=big, seed=3),
+                                   supersede_at_first)
+    assert status == GoalStatus.STATUS_ABORTED
+    assert result.message == 'superseded by a newer room layout'
+    # The layout that superseded it (a bedroom, not the living room) is the room served.
+    assert client.wait_scene(n)['room']['room_type'] == 'bedroom'
+
+
+def test_typed_requests_carry_their_arguments(node):
+    client = node.client
+    client.furnish(LAYOUT, seed=5)
+    client.reset()
+    seed = client.get_parameters(['seed'])['seed']
+    chair = client.next_object(category='office_chair', seed=4)
+    assert chair['category'] == 'office chair'
+    client.reset()
+    assert client.next_object(category='office chair', seed=4) == chair
+    # Nothing was set on the node, and a stated seed took none of its own.
+    assert client.get_parameters(['seed', 'next_category']) == {'seed': seed,
+                                                                 'next_category': ''}
+    proposals = client.suggest(k=3, seed=9)
+    assert len(proposals) == 3 and client.suggest(k=3, seed=9) == proposals
+    with pytest.raises(ClientError, match='toilet.* is not a category of bedroom'):
+        client.next_object(category='toilet')
+    with pytest.raises(ClientError, match='k 99 is out of range'):
+        client.suggest(k=99)
+
+
+def test_the_guides_python_client_example_works_on_a_node_that_served_rooms(node):
+    block = (Path(__file__).resolve().parent.parent / 'docs' / 'node.md').read_text() \
+        .split('## Clients', 1)[1].split('```python\n', 1)[1].split('```', 1)[0]
+    for seed in (0, 7):        # rooms served before: the node's seed has moved on
+        node.client.furnish(LAYOUT, seed=seed)
+        names = {'SceneSynthClient': lambda *a, **k: _Borrowed(node.client)}
+        exec(block.replace('from scene_synth_ros.ros_client import SceneSynthClient\n', ''),
+             names)
+        assert names['chair']['category'] == 'office chair'
+        assert len(names['proposals']) == 3 and names['scene']['objects']
+
+
+class _Borrowed:
+    """The module's client, as the example's ``with`` block opens its own."""
+
+    def __init__(self, client):
+        self.client = client
+
+    def __enter__(self):
+        return self.client
+
+    def __exit__(self, *exc):
+        return False
 
 
 def test_help_prints_the_usage_and_a_stray_argument_is_named():
@@ -546,7 +670,10 @@ def test_fast_dds_frees_large_messages_unless_the_user_configured_it(monkeypatch
 
     def environment(**values):
         for k in (*node_module._FASTDDS_SETTINGS, 'RMW_IMPLEMENTATION'):
-            monkeypatch.delenv(k, raising=False)
+            # set first, so that monkeypatch restores what was there, unset included:
+            # steady_middleware's own settings must not outlive this test
+            monkeypatch.setenv(k, '')
+            monkeypatch.delenv(k)
         for k, v in values.items():
             monkeypatch.setenv(k, v)
     environment()

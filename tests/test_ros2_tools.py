@@ -34,7 +34,8 @@ _DOMAINS = iter(random.Random().sample(range(160, 230), 60))
 
 
 def _env(domain: int) -> dict[str, str]:
-    env = {k: v for k, v in os.environ.items() if not k.startswith(('ROS_', 'RMW_'))}
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith(('ROS_', 'RMW_', 'FASTRTPS_', 'FASTDDS_'))}
     env.update(AMENT_PREFIX_PATH=sys.prefix, ROS_DOMAIN_ID=str(domain),
                ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST', PATH=f'{BIN}:{env["PATH"]}',
                PYTHONUNBUFFERED='1')
@@ -194,3 +195,42 @@ def test_parameters_keep_their_types_and_diagnostics_name_the_node(launched):
                       env)
     assert 'name: "/scene_synth_node: scene synthesis"' in diagnostics or \
         "name: '/scene_synth_node: scene synthesis'" in diagnostics, diagnostics
+
+
+def test_a_lifecycle_manager_or_ros2_lifecycle_drives_the_node(tmp_path):
+    """Started for a lifecycle manager (none is installed here: the launch says so), the
+    node waits unconfigured; `ros2 lifecycle set` configures, activates, deactivates, cleans
+    it up and shuts it down as nav2's manager would, and the launch then ends."""
+    env = _env(next(_DOMAINS))
+    launch = Started('ros2 launch scene_synth_ros scene_synth.launch.xml lifecycle_manager:=true '
+                     'namespace:=sim', env, tmp_path / 'launch.log', 'process started with pid')
+    node = '/sim/scene_synth_node'
+    try:
+        deadline = time.monotonic() + 60
+        while 'unconfigured' not in (state := subprocess.run(
+                ['ros2', 'lifecycle', 'get', node], env=env, capture_output=True,
+                text=True).stdout):
+            assert time.monotonic() < deadline, launch.log()
+            time.sleep(0.5)
+        assert 'nav2_lifecycle_manager is not installed' in launch.log()
+        assert 'Transitioning successful' in _sh(f'ros2 lifecycle set {node} configure', env)
+        assert _sh(f'ros2 lifecycle get {node}', env).startswith('inactive')
+        refused = _sh(f'ros2 service call {node}/clear_objects '
+                      'scene_synth_msgs/srv/ClearObjects', env)
+        assert 'success=False' in refused and 'is inactive' in refused, refused
+        goal = (f'ros2 action send_goal {node}/furnish scene_synth_msgs/action/Furnish '
+                "\"{layout_text: '$(tr -d '\\n' < examples/kitchen_layout.json)'}\"")
+        assert 'Goal was rejected' in _sh(goal, env)
+        _sh(f'ros2 lifecycle set {node} activate', env)
+        assert 'status: SUCCEEDED' in _sh(goal, env)
+        _sh(f'ros2 lifecycle set {node} deactivate', env)
+        assert 'Goal was rejected' in _sh(goal, env)
+        _sh(f'ros2 lifecycle set {node} cleanup', env)
+        assert _sh(f'ros2 lifecycle get {node}', env).startswith('unconfigured')
+        services = _sh('ros2 service list', env)
+        assert f'{node}/change_state' in services and f'{node}/insert_object' not in services
+        _sh(f'ros2 lifecycle set {node} shutdown', env)
+        assert launch.proc.wait(30) == 0, launch.log()
+        assert 'Traceback' not in launch.log(), launch.log()
+    finally:
+        launch.stop()

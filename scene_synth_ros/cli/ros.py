@@ -103,11 +103,11 @@ def cmd_service(args) -> int:
     with _client(args) as client:
         try:
             if args.service == 'next_object':
-                answer = client.next_object(args.category, args.timeout)
+                answer = client.next_object(args.category, timeout=args.timeout)
             elif args.service == 'generate':
                 answer = client.generate(args.seed, args.timeout)
             elif args.service == 'suggest':
-                answer = {'objects': client.suggest(args.k, args.timeout)}
+                answer = {'objects': client.suggest(args.k, timeout=args.timeout)}
             else:
                 answer = client.reset(args.timeout)
         except ClientError as e:
