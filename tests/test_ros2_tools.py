@@ -207,7 +207,7 @@ def test_a_lifecycle_manager_or_ros2_lifecycle_drives_the_node(tmp_path):
     node = '/sim/scene_synth_node'
     try:
         deadline = time.monotonic() + 60
-        while 'unconfigured' not in (state := subprocess.run(
+        while 'unconfigured' not in (subprocess.run(
                 ['ros2', 'lifecycle', 'get', node], env=env, capture_output=True,
                 text=True).stdout):
             assert time.monotonic() < deadline, launch.log()
