@@ -2,6 +2,7 @@
 import json
 import os
 from pathlib import Path
+import re
 import shutil
 import subprocess
 import sys
@@ -194,3 +195,24 @@ def test_setup_py_runs_without_warnings():
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 0 and done.stdout.split() == ['scene_synth_ros', '0.1.0']
     assert 'warn' not in done.stderr.lower(), done.stderr
+
+
+def test_the_interface_package_declares_every_interface_file():
+    """scene_synth_msgs/: format 3, an interface package, and CMakeLists.txt generating
+    exactly the .msg, .srv and .action files that are there."""
+    pkg = ROOT / 'scene_synth_msgs'
+    root = ET.parse(pkg / 'package.xml').getroot()
+    assert root.get('format') == '3' and root.findtext('name') == 'scene_synth_msgs'
+    assert root.findtext('member_of_group') == 'rosidl_interface_packages'
+    assert root.find('export').findtext('build_type') == 'ament_cmake'
+    files = {str(p.relative_to(pkg)) for p in pkg.glob('*/*')
+             if p.suffix in ('.msg', '.srv', '.action')}
+    listed = set(re.findall(r'"((?:msg|srv|action)/\w+\.\w+)"',
+                            (pkg / 'CMakeLists.txt').read_text()))
+    assert files == listed and len(files) == 12
+    # Every message type the files use comes from a package they declare.
+    used = {m for p in files for m in re.findall(r'^(\w+)/\w+', (pkg / p).read_text(), re.M)}
+    assert used <= {d.text for d in root.findall('depend')}
+    # The node's package depends on it.
+    node_pkg = ET.parse(ROOT / 'package.xml').getroot()
+    assert 'scene_synth_msgs' in {e.text for e in node_pkg.findall('exec_depend')}
