@@ -311,11 +311,13 @@ class SceneSynthNode(LifecycleNode):
     def _furnish(self, goal_handle) -> Furnish.Result:
         goal = goal_handle.request
         result = Furnish.Result()
-        answer = self._furnish_goal(goal, goal_handle)
+        server = self.server        # a cleanup meanwhile releases it
+        answer = (self._furnish_goal(server, goal, goal_handle) if server is not None
+                  else Answer(False, self._inactive() or 'the node is not configured'))
         result.success = answer.ok
         if answer.ok and answer.served is not None:
             result.scene_json = answer.served.json
-            result.scene = scene_msg(answer.served.json, self.server.config.frame_id,
+            result.scene = scene_msg(answer.served.json, server.config.frame_id,
                                      self.get_clock().now().to_msg())
         else:
             result.message = answer.message
@@ -327,7 +329,8 @@ class SceneSynthNode(LifecycleNode):
             goal_handle.abort()
         return result
 
-    def _furnish_goal(self, goal, goal_handle) -> Answer:
+    @staticmethod
+    def _furnish_goal(server: SceneServer, goal, goal_handle) -> Answer:
         try:
             stated = robot_radius_reach_clearance(goal.robot)
             robot = None if stated is None else Robot(*stated)
@@ -337,9 +340,9 @@ class SceneSynthNode(LifecycleNode):
         def told(obj, objects: int, seconds: float) -> None:
             goal_handle.publish_feedback(Furnish.Feedback(
                 object=object_msg(obj.to_dict()), objects=objects, seconds=seconds))
-        return self.server.furnish(goal.layout_text or layout_dict(goal.layout),
-                                   seed=goal.seed, for_robot=robot, on_object=told,
-                                   cancelled=lambda: goal_handle.is_cancel_requested)
+        return server.furnish(goal.layout_text or layout_dict(goal.layout),
+                              seed=goal.seed, for_robot=robot, on_object=told,
+                              cancelled=lambda: goal_handle.is_cancel_requested)
 
     def _on_parameters(self, params: list[Parameter]) -> SetParametersResult:
         # Parameters the node does not own (use_sim_time, what rclpy declares) pass through

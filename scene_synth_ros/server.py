@@ -445,14 +445,10 @@ class SceneServer:
                                   on_object=on_object, cancelled=cancelled)
         if not isinstance(job, _Job):
             return Answer(False, job)
-        with self._lock:
-            self._calls.append(job)
-        try:
-            job.done.wait()
-            return Answer(job.ok, job.message, job.used_seed, job.objects, job.served)
-        finally:
-            with self._lock:
-                self._calls.remove(job)
+        # Not one of the calls that max_pending counts: a layout is served before them all.
+        # close() answers it, queued or running, so the wait ends.
+        job.done.wait()
+        return Answer(job.ok, job.message, job.used_seed, job.objects, job.served)
 
     def _accept_layout(self, payload: Any, source: str, **what) -> _Job | str:
         """The queued job of a room layout, or why it was rejected (also on the status)."""
