@@ -36,7 +36,8 @@ from rclpy.exceptions import InvalidParameterTypeException, InvalidParameterValu
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
 from rclpy.parameter import Parameter
-from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
+from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.signals import SignalHandlerOptions
 from rclpy.utilities import remove_ros_args
 from scene_synth_msgs.action import Furnish
@@ -107,6 +108,10 @@ _FASTDDS_SETTINGS = ('FASTRTPS_DEFAULT_PROFILES_FILE', 'FASTDDS_DEFAULT_PROFILES
 # would not match; a layout from a transient-local publisher arrives on both, once here.
 LATCHED_INPUT = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                            durability=DurabilityPolicy.TRANSIENT_LOCAL)
+# What a user may set for the room topics and ~/room_polygon at start-up, as parameters
+# qos_overrides./scene_synth_node/scene.publisher.durability and the like (read-only).
+OVERRIDABLE = QoSOverridingOptions([QoSPolicyKind.DEPTH, QoSPolicyKind.DURABILITY,
+                                    QoSPolicyKind.HISTORY, QoSPolicyKind.RELIABILITY])
 # Layouts remembered to drop the second copy by: a handful in flight at most.
 SEEN_LAYOUTS = 64
 # The typed services, each with the request of ``server.REQUESTS`` it runs.
@@ -176,15 +181,20 @@ class SceneSynthNode(LifecycleNode):
         self._configure_error = ''
         inputs = MutuallyExclusiveCallbackGroup()
         services = ReentrantCallbackGroup()     # a waiting service must not block another
-        self.markers_pub = self.create_lifecycle_publisher(MarkerArray, '~/markers', LATCHED)
-        self.poses_pub = self.create_lifecycle_publisher(PoseArray, '~/poses', LATCHED)
-        self.scene_pub = self.create_lifecycle_publisher(String, '~/scene', LATCHED)
+        self.markers_pub = self.create_lifecycle_publisher(
+            MarkerArray, '~/markers', _own(LATCHED), qos_overriding_options=OVERRIDABLE)
+        self.poses_pub = self.create_lifecycle_publisher(
+            PoseArray, '~/poses', _own(LATCHED), qos_overriding_options=OVERRIDABLE)
+        self.scene_pub = self.create_lifecycle_publisher(
+            String, '~/scene', _own(LATCHED), qos_overriding_options=OVERRIDABLE)
         self._seen_layouts: deque = deque(maxlen=SEEN_LAYOUTS)
         made = [self.create_subscription(String, '~/room_layout', self._on_layout, qos,
                                          callback_group=inputs)
                 for qos in (RELIABLE, LATCHED_INPUT)]
         made.append(self.create_subscription(PolygonStamped, '~/room_polygon',
-                                             self._on_polygon, RELIABLE, callback_group=inputs))
+                                             self._on_polygon, _own(RELIABLE),
+                                             callback_group=inputs,
+                                             qos_overriding_options=OVERRIDABLE))
         made += [self.create_service(Trigger, f'~/{kind}', self._service(kind),
                                      callback_group=services) for kind in REQUESTS]
         made += [self.create_service(srv, f'~/{name}', self._typed_service(kind),
@@ -440,6 +450,13 @@ class SceneSynthNode(LifecycleNode):
     def destroy_node(self):
         self._release()
         super().destroy_node()
+
+
+def _own(profile: QoSProfile) -> QoSProfile:
+    """A copy of ``profile`` for one endpoint: rclpy writes a QoS override into the profile
+    it is given, which would change every endpoint sharing it."""
+    return QoSProfile(history=profile.history, depth=profile.depth,
+                      reliability=profile.reliability, durability=profile.durability)
 
 
 def _as_floats(params: list[Parameter]) -> list[Parameter]:

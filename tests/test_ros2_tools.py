@@ -168,8 +168,10 @@ def test_a_layout_latched_before_the_node_starts_is_furnished(tmp_path):
     publisher = Started(f'ros2 topic pub -w 0 -t 1 --keep-alive 120 --qos-durability '
                         f"transient_local /scene_synth_node/room_layout std_msgs/msg/String "
                         f"\"data: '{layout}'\"", env, tmp_path / 'pub.log', 'publishing #1')
-    node = Started('ros2 run scene_synth_ros scene_synth_node', env, tmp_path / 'node.log',
-                   'waiting for ~/room_layout')
+    # with one QoS overridden, as a user may at start-up (qos_overriding_options)
+    node = Started('ros2 run scene_synth_ros scene_synth_node --ros-args -p '
+                   'qos_overrides./scene_synth_node/markers.publisher.durability:=volatile',
+                   env, tmp_path / 'node.log', 'waiting for ~/room_layout')
     try:
         deadline = time.monotonic() + 60
         while 'kitchen with' not in node.log():
@@ -179,9 +181,18 @@ def test_a_layout_latched_before_the_node_starts_is_furnished(tmp_path):
         assert scene.room.room_type == 'kitchen' and scene.objects
         # Once, though the latched layout matched both of the node's subscriptions.
         assert node.log().count('room_layout: kitchen with') == 1, node.log()
+        assert _published_durability('/scene_synth_node/markers', env) == 'VOLATILE'
+        assert _published_durability('/scene_synth_node/scene', env) == 'TRANSIENT_LOCAL'
     finally:
         assert node.stop() == 0, node.log()
         publisher.stop()
+
+
+def _published_durability(topic: str, env: dict) -> str:
+    """The durability the node publishes ``topic`` with, as `ros2 topic info -v` says."""
+    info = _sh(f'ros2 topic info --no-daemon --spin-time 3 -v {topic}', env)
+    (publisher,) = [b for b in info.split('Node name:') if 'Endpoint type: PUBLISHER' in b]
+    return re.search(r'Durability: (\w+)', publisher).group(1)
 
 
 def test_parameters_keep_their_types_and_diagnostics_name_the_node(launched):
