@@ -108,6 +108,10 @@ class SceneSynthClient:
 
     def close(self) -> None:
         self.executor.shutdown(timeout_sec=1.0)
+        # The action client holds the node: left to the garbage collector, the node would be
+        # finalised there, in whatever process runs it (a forked worker hangs joining the
+        # middleware's threads, which it does not have).
+        self._furnish.destroy()
         self.node.destroy_node()
         rclpy.try_shutdown(context=self.context)
 

@@ -5,9 +5,11 @@ Every node gets a ROS domain of its own, so tests (and test runs) do not hear ea
 from __future__ import annotations
 
 from dataclasses import fields
+import gc
 import itertools
 import json
 import math
+import multiprocessing
 import os
 from pathlib import Path
 import random
@@ -522,6 +524,23 @@ def test_typed_requests_carry_their_arguments(node):
         client.next_object(category='toilet')
     with pytest.raises(ClientError, match='k 99 is out of range'):
         client.suggest(k=99)
+
+
+def test_a_closed_client_leaves_nothing_a_forked_process_would_finalise(node):
+    # A client's rclpy objects left to the garbage collector are finalised in whatever
+    # process collects them: a worker forked later (a batch, a pool) hung there, joining
+    # threads of the middleware it does not have.
+    client = SceneSynthClient(node.client.target, domain_id=node.domain)
+    client.spin_until(client.ready, 60.0, 'services')
+    client.furnish(LAYOUT, seed=1)
+    client.close()
+    del client
+    child = multiprocessing.get_context('fork').Process(target=gc.collect)
+    child.start()
+    child.join(60)
+    if child.exitcode is None:
+        child.kill()
+    assert child.exitcode == 0
 
 
 def test_the_guides_python_client_example_works_on_a_node_that_served_rooms(node):

@@ -33,13 +33,26 @@ ECHO_SCENE = ('ros2 topic echo --once --field data --full-length --qos-reliabili
 _DOMAINS = iter(random.Random().sample(range(160, 230), 60))
 
 
+_USED: list[dict] = []      # the environments of the domains used, for the daemons' end
+
+
 def _env(domain: int) -> dict[str, str]:
     env = {k: v for k, v in os.environ.items()
            if not k.startswith(('ROS_', 'RMW_', 'FASTRTPS_', 'FASTDDS_'))}
     env.update(AMENT_PREFIX_PATH=sys.prefix, ROS_DOMAIN_ID=str(domain),
                ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST', PATH=f'{BIN}:{env["PATH"]}',
                PYTHONUNBUFFERED='1')
+    _USED.append(env)
     return env
+
+
+@pytest.fixture(scope='module', autouse=True)
+def _stop_daemons():
+    """The ros2 commands start a discovery daemon per domain, as they do for a user; the
+    tests stop theirs rather than leave them running."""
+    yield
+    for env in _USED:
+        subprocess.run(['ros2', 'daemon', 'stop'], env=env, capture_output=True, timeout=30)
 
 
 def _sh(line: str, env: dict, timeout: float = 120) -> str:
