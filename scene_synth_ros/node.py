@@ -106,6 +106,9 @@ _FASTDDS_SETTINGS = ('FASTRTPS_DEFAULT_PROFILES_FILE', 'FASTDDS_DEFAULT_PROFILES
 # layout published before the node was up still arrives. A second subscription, volatile,
 # hears the publishers that are (`ros2 topic pub` by default), which a transient-local one
 # would not match; a layout from a transient-local publisher arrives on both, once here.
+# Known limit: two layouts a transient-local publisher sends in quick succession may be
+# served out of order (the latched subscription, depth 1, can hand over the newer before the
+# volatile one hands over the older); docs/node.md says so.
 LATCHED_INPUT = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                            durability=DurabilityPolicy.TRANSIENT_LOCAL)
 # What a user may set for the room topics and ~/room_polygon at start-up, as parameters

@@ -46,12 +46,11 @@ LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
 # Room layouts in and diagnostics out: none may be lost.
 RELIABLE = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
-# Layouts out, transient local as a simulator publishes them: they match both of the node's
-# subscriptions to ~/room_layout without a warning about the latched one (a volatile
-# publisher gets one, and its layouts still arrive). As deep as RELIABLE: none replaced
-# before it is delivered.
-LAYOUTS = QoSProfile(depth=RELIABLE.depth, reliability=ReliabilityPolicy.RELIABLE,
-                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
+# Layouts out: volatile, so that they match only the node's volatile subscription to
+# ~/room_layout and arrive in the order sent. A transient-local publisher matches its
+# latched subscription too, and a layout sent right after another could be served before it
+# (node.py). The middleware warns once that the latched subscription is incompatible.
+LAYOUTS = RELIABLE
 TOPICS = {'scene': String, 'markers': MarkerArray, 'poses': PoseArray}
 # The node's std_srvs/Trigger services (``server.REQUESTS``; this module does not import the
 # library behind the node).
