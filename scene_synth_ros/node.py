@@ -32,6 +32,7 @@ from rcl_interfaces.msg import (
 import rclpy
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
+from rclpy.event_handler import SubscriptionEventCallbacks
 from rclpy.exceptions import InvalidParameterTypeException, InvalidParameterValueException
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
@@ -191,9 +192,13 @@ class SceneSynthNode(LifecycleNode):
         self.scene_pub = self.create_lifecycle_publisher(
             String, '~/scene', _own(LATCHED), qos_overriding_options=OVERRIDABLE)
         self._seen_layouts: deque = deque(maxlen=SEEN_LAYOUTS)
-        made = [self.create_subscription(String, '~/room_layout', self._on_layout, qos,
-                                         callback_group=inputs)
-                for qos in (RELIABLE, LATCHED_INPUT)]
+        made = [self.create_subscription(String, '~/room_layout', self._on_layout, RELIABLE,
+                                         callback_group=inputs),
+                # a volatile publisher cannot match it, by design: no warning of that
+                self.create_subscription(String, '~/room_layout', self._on_layout,
+                                         LATCHED_INPUT, callback_group=inputs,
+                                         event_callbacks=SubscriptionEventCallbacks(
+                                             incompatible_qos=lambda event: None))]
         made.append(self.create_subscription(PolygonStamped, '~/room_polygon',
                                              self._on_polygon, _own(RELIABLE),
                                              callback_group=inputs,
