@@ -85,7 +85,7 @@ def quality(room_types, n, corpus_rooms, workers, weights):
 def timing(rooms, weights, device='cpu', runtime='auto'):
     from scene_synth_ros.synth import SynthConfig, Synthesizer
     synth = Synthesizer(weights, SynthConfig(device=device, runtime=runtime))
-    synth.bundle('bedroom')
+    synth.prepare('bedroom')
     synth.generate(empty_room('bedroom', HELDOUT_SEED, 10_000), seed=0)   # warm-up
     seconds, modules, objects = [], Counter(), 0
     faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt

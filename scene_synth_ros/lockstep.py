@@ -11,7 +11,7 @@ in and the batches stay full. At most ``width`` rooms are under way; when one en
 starts. A room alone is served the same way, as a batch of one, with no greenlet.
 
 A room draws all its random numbers from its own seed, in the same order as alone: the
-CVAEs' noise is drawn by the room before it asks (``ConditionalVAE.noise``). So a room in
+CVAEs' noise is drawn by the room before it asks (``draws.prior_noise``). So a room in
 lockstep differs from the same room made alone only where a forward pass over a batch sums
 in another order than over one example, about 1e-5 on this CPU
 (``docs/design/investigations.md``); that can tip a draw that fell as close to a boundary, and
@@ -20,9 +20,10 @@ distribution to rooms made alone, and nearly all are the same rooms to the last 
 (``tests/test_lockstep.py`` checks both). A group of rooms (the same rooms, the same
 order) always gives the same results.
 
-Greenlets rather than threads: switching costs about a microsecond, there is no race (a
-room runs only when the coordinator switches to it), and torch's per-thread state (the
-coordinator holds inference mode while rooms run) is shared by the rooms. ``each`` gives each
+Greenlets rather than threads: switching costs about a microsecond, and there is no race (a
+room runs only when the coordinator switches to it). Calls and answers are numpy arrays
+(``networks.runtime``); the rooms touch no torch state, and torch, where it runs the calls,
+enters inference mode for each forward pass (``graphs.TorchCalls``). ``each`` gives each
 room's result as the room ends, so that a batch writes it at once; ``run`` gives them all.
 """
 from __future__ import annotations
@@ -32,44 +33,32 @@ from dataclasses import dataclass
 from typing import Callable, Collection, Iterator, Sequence, TypeVar
 
 from greenlet import getcurrent, greenlet
-import torch
-
-from .networks.runtime import OnnxCalls
-from .networks.runtime import forward as torch_forward
+import numpy as np
 
 T = TypeVar('T')
 
 
 @dataclass
 class Request:
-    """One network call of one room: ``module`` of ``networks`` (a bundle's networks, or
-    their ``OnnxCalls``) on ``args``, tensors with the batch first."""
+    """One network call of one room: ``module`` of ``networks`` (a bundle's calls, an
+    ``OnnxCalls`` or a ``TorchCalls``) on ``args``, arrays with the batch first."""
 
-    networks: dict | OnnxCalls
+    networks: Callable
     module: str
-    args: tuple[torch.Tensor, ...]
+    args: tuple[np.ndarray, ...]
 
     @property
     def size(self) -> int:
         return self.args[0].shape[0]
 
 
-def forward(networks, module: str, *args: torch.Tensor
-            ) -> tuple[torch.Tensor | None, ...]:
-    """``module``'s forward pass over a batch (``networks.runtime.MODULE_CALLS``):
-    ``networks`` is a bundle's networks (torch) or its ``OnnxCalls``."""
-    if isinstance(networks, OnnxCalls):
-        return networks(module, *args)
-    return torch_forward(networks, module, *args)
-
-
-def _cat(parts: list[torch.Tensor]) -> torch.Tensor:
+def _cat(parts: list[np.ndarray]) -> np.ndarray:
     """``parts`` one after another along the batch; images laid out channels-last stay so
-    (``torch.cat`` takes an image of a batch of one, whose layout it cannot tell, as
-    channels-first, and takes the slow path of a copy across layouts)."""
-    if parts[0].dim() == 4 and parts[0].is_contiguous(memory_format=torch.channels_last):
-        return torch.cat([p.permute(0, 2, 3, 1) for p in parts]).permute(0, 3, 1, 2)
-    return torch.cat(parts)
+    (a plain concatenation would lay them out channels-first, a copy across layouts the
+    networks then undo)."""
+    if parts[0].ndim == 4 and np.moveaxis(parts[0], 1, -1).flags.c_contiguous:
+        return np.moveaxis(np.concatenate([np.moveaxis(p, 1, -1) for p in parts]), -1, 1)
+    return np.concatenate(parts)
 
 
 def _by_call(requests: dict[int, Request]) -> list[list[int]]:
@@ -82,19 +71,19 @@ def _by_call(requests: dict[int, Request]) -> list[list[int]]:
     return list(calls.values())
 
 
-def serve(requests: Sequence[Request]) -> list[tuple[torch.Tensor | None, ...]]:
+def serve(requests: Sequence[Request]) -> list[tuple[np.ndarray | None, ...]]:
     """Each request's answer, the requests of one bundle and module answered by one forward
     pass over all their examples, in the order of the requests."""
     answers: list = [None] * len(requests)
     for ks in _by_call(dict(enumerate(requests))):
         first = requests[ks[0]]
         if len(ks) == 1:
-            answers[ks[0]] = forward(first.networks, first.module, *first.args)
+            answers[ks[0]] = first.networks(first.module, *first.args)
             continue
         args = [_cat([requests[k].args[i] for k in ks]) for i in range(len(first.args))]
-        outs = forward(first.networks, first.module, *args)
-        sizes = [requests[k].size for k in ks]
-        parts = [o.split(sizes) if o is not None else [None] * len(ks) for o in outs]
+        outs = first.networks(first.module, *args)
+        bounds = np.cumsum([requests[k].size for k in ks])[:-1]
+        parts = [np.split(o, bounds) if o is not None else [None] * len(ks) for o in outs]
         for j, k in enumerate(ks):
             answers[k] = tuple(p[j] for p in parts)
     return answers
@@ -104,14 +93,13 @@ class Room(greenlet):
     """The greenlet of one room of a lockstep group."""
 
 
-def ask(networks, module: str, *args: torch.Tensor
-        ) -> tuple[torch.Tensor | None, ...]:
+def ask(networks, module: str, *args: np.ndarray) -> tuple[np.ndarray | None, ...]:
     """The answer to one network call: from the coordinator, inside a lockstep group; right
     away, as a batch of one, outside."""
     me = getcurrent()
     if isinstance(me, Room):
         return me.parent.switch(Request(networks, module, args))
-    return forward(networks, module, *args)
+    return networks(module, *args)
 
 
 def _next_call(waiting: dict[int, Request]) -> list[int]:
@@ -141,36 +129,31 @@ def each(calls: Sequence[Callable[[], T]], width: int | None = None,
     try:
         while todo:
             ended = []
-            # The rooms run only inside inference mode, and enter and leave their own inside
-            # it: a room that left its own after the group had would put back the mode it
-            # found, and leave the thread in it. The consumer runs outside it.
-            with torch.inference_mode():
-                while queue:
-                    k, answer = queue.popleft()
-                    try:
-                        out = rooms[k].switch(*answer)
-                    except Exception as e:    # noqa: BLE001 - one room's end, not the group's
-                        out = e
-                    if not rooms[k].dead:
-                        waiting[k] = out
-                        continue
-                    ended.append((k, out))
-                    todo.discard(k)
-                    if started < len(rooms):
-                        queue.append((started, ()))
-                        started += 1
-                if waiting and todo:
-                    ks = _next_call(waiting)
-                    for k, answer in zip(ks, serve([waiting.pop(k) for k in ks]), strict=True):
-                        queue.append((k, (answer,)))
+            while queue:
+                k, answer = queue.popleft()
+                try:
+                    out = rooms[k].switch(*answer)
+                except Exception as e:    # noqa: BLE001 - one room's end, not the group's
+                    out = e
+                if not rooms[k].dead:
+                    waiting[k] = out
+                    continue
+                ended.append((k, out))
+                todo.discard(k)
+                if started < len(rooms):
+                    queue.append((started, ()))
+                    started += 1
+            if waiting and todo:
+                ks = _next_call(waiting)
+                for k, answer in zip(ks, serve([waiting.pop(k) for k in ks]), strict=True):
+                    queue.append((k, (answer,)))
             yield from ended
             if not waiting and not queue:
                 break
     finally:
-        with torch.inference_mode():
-            for room in rooms:      # abandoned (or left by Ctrl-C): unwound now, in the mode
-                if room and not room.dead:
-                    room.throw()
+        for room in rooms:      # abandoned (or left by Ctrl-C): unwound now
+            if room and not room.dead:
+                room.throw()
 
 
 def run(calls: Sequence[Callable[[], T]], width: int | None = None,

@@ -3,7 +3,7 @@
 The ROS node copies each ``MarkerSpec`` field into a ``visualization_msgs/Marker``; keeping
 the geometry here lets it be tested without a ROS installation. Units and frames follow
 REP-103 and ``scene.py``: metres, z up, yaw about +z, an object's front along its local +x.
-Colours come from ``plot`` so that RViz and the top-down PNGs agree.
+Colours come from ``colors`` so that RViz and the top-down PNGs agree.
 
 With ``style='mesh'`` an object is its catalog model's mesh as shipped in the package
 (``package://scene_synth_ros/meshes/<model id>.obj``, see ``meshes.shipped``), which RViz
@@ -16,12 +16,12 @@ colour since STL has no materials.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 import math
 
-from matplotlib.colors import to_rgba
 import shapely
 
-from . import plot
+from . import colors
 from .catalog import Catalog
 from .categories import PAPER, Vocabulary
 from .export import WALL_THICKNESS, wall_boxes
@@ -77,13 +77,19 @@ class MarkerSpec:
 
 def category_color(category: str, vocabulary: Vocabulary = PAPER) -> RGBA:
     """The RGBA colour of a category, the same as in the top-down pictures."""
-    return _floats(plot.category_color(category, vocabulary), 4, 'color')
+    return _floats(colors.category_color(category, vocabulary), 4, 'color')
 
 
-FLOOR_RGBA = _floats(to_rgba(plot.FLOOR_COLOR), 4, 'color')
-WALL_RGBA = _floats(to_rgba(plot.WALL_COLOR), 4, 'color')
-DOOR_RGBA = _floats(to_rgba(plot.DOOR_COLOR, 0.6), 4, 'color')
-WINDOW_RGBA = _floats(to_rgba(plot.WINDOW_GLASS_COLOR, 0.4), 4, 'color')
+# The room's parts: their colour and opacity. Read when the first room is drawn (matplotlib
+# names the colours), not when the node starts.
+_PARTS = {'floor': (colors.FLOOR_COLOR, None), 'walls': (colors.WALL_COLOR, None),
+          'doors': (colors.DOOR_COLOR, 0.6), 'windows': (colors.WINDOW_GLASS_COLOR, 0.4)}
+
+
+@lru_cache(maxsize=None)
+def part_color(part: str) -> RGBA:
+    """The RGBA of a room's ``part`` (``floor``, ``walls``, ``doors`` or ``windows``)."""
+    return _floats(colors.rgba(*_PARTS[part]), 4, 'color')
 LABEL_RGBA = (1.0, 1.0, 1.0, 1.0)
 
 
@@ -96,7 +102,7 @@ def _floor_marker(room: Room) -> MarkerSpec:
             corners.reverse()   # counter-clockwise from above, so the face is lit from above
         points += corners
     return MarkerSpec('floor', 0, 'triangle_list', (0.0, 0.0, 0.0), 0.0, (1.0, 1.0, 1.0),
-                      FLOOR_RGBA, points=tuple(points))
+                      part_color('floor'), points=tuple(points))
 
 
 def _opening_marker(room: Room, op: Opening, ns: str, k: int, color: RGBA) -> MarkerSpec:
@@ -143,10 +149,11 @@ def scene_markers(scene: Scene, style: str = 'cube', catalog: Catalog | None = N
                          f'{", ".join(MARKER_STYLES)}')
     room = scene.room
     out = [_floor_marker(room)]
-    out += [MarkerSpec('walls', k, 'cube', b.centre, b.yaw, b.size, WALL_RGBA)
+    out += [MarkerSpec('walls', k, 'cube', b.centre, b.yaw, b.size, part_color('walls'))
             for k, b in enumerate(wall_boxes(room))]
-    out += [_opening_marker(room, d, 'doors', k, DOOR_RGBA) for k, d in enumerate(room.doors)]
-    out += [_opening_marker(room, w, 'windows', k, WINDOW_RGBA)
+    out += [_opening_marker(room, d, 'doors', k, part_color('doors'))
+            for k, d in enumerate(room.doors)]
+    out += [_opening_marker(room, w, 'windows', k, part_color('windows'))
             for k, w in enumerate(room.windows)]
     seen: dict[str, int] = {}
     for obj in scene.objects:

@@ -24,7 +24,6 @@ import threading
 import time
 from typing import Any, Callable
 
-import torch
 import yaml
 
 from .catalog import PROCEDURAL, Catalog
@@ -42,7 +41,8 @@ from .export import FORMATS as EXPORT_FORMATS
 from .export import UnknownFormat, parse_formats, write
 from .files import write_atomic
 from .markers import MARKER_STYLES
-from .networks.config import resolve_device
+from .networks.config import device_name
+from .networks.runtime import set_threads
 from .rules import robot
 from .rules.robot import Robot, RobotReport
 from .scene import PlacedObject, Scene
@@ -97,7 +97,8 @@ class ServerConfig:
         'sdf,gltf', 'formats written to export_dir, a comma list of: '
         + ', '.join(EXPORT_FORMATS))
     # One thread, as the node shares its cores with its clients.
-    torch_threads: int = setting(1, 'CPU threads torch may use', bounds=(1, 64),
+    torch_threads: int = setting(1, 'CPU threads the networks may use (torch or onnxruntime)',
+                                 bounds=(1, 64),
                                  read_only=True)
     max_pending: int = setting(
         8, 'service calls that may wait ahead of a call (reset and next_object are served '
@@ -210,7 +211,7 @@ def _check_text(name: str, value: str, vocabulary: Vocabulary = PAPER) -> str:
                               f'{", ".join(vocabulary.room_types)}') from None
     if name == 'device':
         try:
-            resolve_device(value)
+            device_name(value)
         except ValueError as e:
             raise ConfigError(str(e)) from None
     if name == 'next_category' and value:
@@ -354,11 +355,14 @@ class SceneServer:
         for f in fields(ServerConfig):
             if f.name not in BY_WEIGHTS:
                 setattr(config, f.name, check(f.name, getattr(config, f.name)))
-        torch.set_num_threads(config.torch_threads)
+        set_threads(config.torch_threads)
         self._synth = self._load(config.weights_dir, config.device, config.runtime)
         for name in BY_WEIGHTS:
             setattr(config, name, check(name, getattr(config, name), self._synth.vocabulary))
         _check_weights_hold(config, self._synth)
+        # The calls of the room type served by default are readied now, the others' at their
+        # first room (0.1 s each with their graphs in the cache): a shorter start.
+        self._synth.prepare(config.room_type)
         robot_of(config)
         self.config = config
         # read once by check: cached
@@ -386,7 +390,7 @@ class SceneServer:
     def _load(weights_dir: str, device: str, runtime: str) -> Synthesizer:
         synth = Synthesizer(Path(weights_dir).expanduser() if weights_dir else None,
                             SynthConfig(device=device, runtime=runtime))
-        synth.load_all()                   # fail now, naming the file, not at the first room
+        synth.load_all(ready=())        # a bad weights file is said now, not at a room
         return synth
 
     def reconfigure(self, changes: dict[str, Any]) -> None:
@@ -400,16 +404,21 @@ class SceneServer:
         synth = None
         loaded = ('weights_dir', 'device', 'runtime')
         changed = [n for n in loaded if getattr(new, n) != getattr(self.config, n)]
+        what = ', '.join(f'{n} {quoted(getattr(new, n))}' for n in changed)
         if changed:
             try:
                 synth = self._load(new.weights_dir, new.device, new.runtime)
             except SceneSynthError as e:
-                what = ', '.join(f'{n} {quoted(getattr(new, n))}' for n in changed)
                 raise ConfigError(f'{what} cannot be used: {e}') from None
         late = {name: check(name, value, (synth or self._synth).vocabulary)
                 for name, value in changes.items() if name in BY_WEIGHTS}
         new = replace(new, **late)
         _check_weights_hold(new, synth or self._synth)
+        if synth is not None:
+            try:
+                synth.prepare(new.room_type)
+            except SceneSynthError as e:
+                raise ConfigError(f'{what} cannot be used: {e}') from None
         robot_of(new)
         # Read again when it changed, or when other weights may define its categories.
         models = load_catalog_dir(new.catalog_dir, (synth or self._synth).vocabulary) \

@@ -49,7 +49,6 @@ from typing import Callable, Collection, Iterator
 import numpy as np
 import shapely
 from shapely.geometry import Polygon
-import torch
 
 from . import catalog
 from .allowance import STRICT, Allowance
@@ -62,18 +61,19 @@ from .geometry import (
     support_fraction,
 )
 from .lockstep import ask
-from .networks.bundle import (
-    Bundle,
-    BundleError,
-    bundle_specs,
-    weights_vocabulary,
+from .networks.config import device_name, resolve_runtime
+from .networks.draws import (
+    LocationDraws,
+    category_probabilities,
+    decode_angle,
+    location_distribution,
+    prior_noise,
+    sigmoid,
+    snap_angle,
 )
-from .networks.category import category_probabilities
-from .networks.config import resolve_device, resolve_runtime
 from .networks.loaded import LoadedNetworks
-from .networks.location import LocationDraws, location_distribution
-from .networks.orientation import decode_angle, snap_angle
 from .networks.runtime import OnnxCalls
+from .networks.served import BundleError, Served, bundle_specs, weights_vocabulary
 from .paths import weights_dir as shipped_weights_dir
 from .render import FIRST_CATEGORY, OBJECT, Frame, TopDownRenderer, quarter_turns, turn_image
 from .rules import groups, home, robot
@@ -196,7 +196,7 @@ class _Context:
     config: SynthConfig           # the settings of the call furnishing it
     room: Room
     spec: RoomTypeSpec
-    bundle: Bundle
+    bundle: Served                # what synthesis reads of the room type's bundle
     calls: dict | OnnxCalls       # the bundle's networks as ``lockstep.ask`` runs them
     frame: Frame                  # the room's frame: what the category and location modules see
     grid: Frame                   # the location module's output grid
@@ -205,8 +205,7 @@ class _Context:
     centres: np.ndarray           # (L * L, 2): the world (x, y) of each grid pixel's centre
     floor: Polygon                # the floor grown by the floor tolerance
     zones: list[Polygon]          # the doors' clear zones
-    rng: np.random.Generator
-    gen: torch.Generator
+    rng: np.random.Generator      # every draw of this room's synthesis
     timings: dict[str, float] = field(default_factory=lambda: dict.fromkeys(MODULES, 0.0))
     # the first-tier objects of a scene (``_first_tier_key``) -> the robot in it
     # (``robot.state``), also for those of the placements that passed the robot check
@@ -264,7 +263,7 @@ class Synthesizer:
         self.observer = observer
         _check_rules(self.config)
         try:
-            self.device = resolve_device(self.config.device)
+            self.device = device_name(self.config.device)
             self.runtime = resolve_runtime(self.config.runtime, self.device)
         except ValueError as e:
             raise SynthesisError(str(e)) from None
@@ -272,29 +271,35 @@ class Synthesizer:
         # The room types of the weights' bundles; what they know of each (a data set's
         # category sets where they were trained on one) is this synthesizer's vocabulary,
         # which its callers parse layouts with.
-        self.room_types = list(bundle_specs(self.weights_dir))
-        self.vocabulary = weights_vocabulary(self.weights_dir)
+        specs = bundle_specs(self.weights_dir)
+        self.room_types = list(specs)
+        self.vocabulary = weights_vocabulary(self.weights_dir, specs)
         self.networks = LoadedNetworks(self.weights_dir, self.device, self.runtime,
                                        self.vocabulary)
 
     # ---- set-up ---------------------------------------------------------------------------
-    def bundle(self, room_type: str) -> Bundle:
-        """The networks of ``room_type``, ready for inference (``LoadedNetworks.bundle``);
-        raises ``BundleError`` naming a bad file."""
+    def bundle(self, room_type: str):
+        """The torch networks of ``room_type``, ready for inference (``LoadedNetworks.bundle``;
+        this imports torch); raises ``BundleError`` naming a bad file."""
         return self.networks.bundle(room_type)
 
-    def calls(self, room_type: str) -> dict | OnnxCalls:
+    def calls(self, room_type: str):
         """The networks of ``room_type`` as synthesis runs them (``LoadedNetworks.calls``)."""
         return self.networks.calls(room_type)
 
-    def load_all(self) -> None:
-        """Load the bundle of every room type of the weights directory and ready its network
-        calls (``prepare``), so that no room pays for either; ``BundleError`` names a bad
+    def load_all(self, ready: Collection[str] | None = None) -> None:
+        """Read the bundle of every room type of the weights directory (its record, from the
+        cache where it is there: ``LoadedNetworks.served``), so that a bad file is said now,
+        and ready the calls (``prepare``) of the room types in ``ready`` (all of them by
+        default), so that no room of those pays for that either; ``BundleError`` names a bad
         file, or says there is none."""
         if not self.room_types:
             raise BundleError(f'{self.weights_dir}: no weights bundles (<room type>.pt) there')
         for rt in self.room_types:
-            self.prepare(rt)
+            if ready is None or rt in ready:
+                self.prepare(rt)
+            else:
+                self.networks.served(rt)
 
     def prepare(self, room_type: str) -> None:
         """Load ``room_type``'s bundle and ready its calls (``LoadedNetworks.prepare``).
@@ -338,10 +343,9 @@ class Synthesizer:
             if o.category not in spec:
                 raise SynthesisError(f'object {o.id!r} is a {o.category}, which is not one of '
                                      f'the {rt} categories the networks know')
-        bundle = self.bundle(rt)
+        bundle = self.networks.served(rt)
         m = bundle.config.model
-        frame = Frame.for_room(room, m.resolution, self.vocabulary,
-                               bundle.networks['location'].multiple)
+        frame = Frame.for_room(room, m.resolution, self.vocabulary, bundle.location_multiple)
         # The location grid covers the frame at the grid's own pixel size.
         n = frame.resolution * m.location_resolution // m.resolution
         grid = Frame(frame.centre, frame.yaw, frame.extent, n)
@@ -358,8 +362,7 @@ class Synthesizer:
             floor_mask=floor_mask.reshape(n, n), door_mask=door_mask.reshape(n, n),
             centres=centres,
             floor=room.polygon.buffer(FLOOR_TOLERANCE, join_style='mitre'), zones=zones,
-            rng=np.random.default_rng(seed),
-            gen=torch.Generator().manual_seed(int(seed) & 0x7FFF_FFFF_FFFF_FFFF))
+            rng=np.random.default_rng(seed))
 
     # ---- public modes ---------------------------------------------------------------------
     def generate(self, room: Room | Scene, seed: int = 0, cancel=None,
@@ -396,39 +399,38 @@ class Synthesizer:
         added: list[PlacedObject] = []
         stopped = 'stop'
         owing = math.inf        # broken cases of the owed-partner rules at the last STOP
-        with torch.inference_mode():
-            while True:
-                if cancel is not None and cancel():
-                    raise SynthesisCancelled('superseded by a newer request')
-                if len(out.objects) >= cfg.max_objects:
-                    stopped = 'max_objects'
-                    break
-                obj, why = self._insert_one(ctx, out)
-                if obj is None and why == 'stop':
-                    # A group still owed a partner gets one more draw, as long as the last
-                    # one mended something (a partner that found no case's side ends it).
-                    broken, partners = owed(out, cfg.owed_partners)
-                    if 0 < broken < owing:
-                        owing = broken
-                        obj, _ = self._insert_one(ctx, out, allow_stop=False, only=partners)
-                        waive = waived_when_owed(partners, cfg.insertion_rules)
-                        if obj is None and waive:
-                            # Then where the rules it need not keep would refuse it.
-                            kept, ctx.waived = ctx.waived, ctx.waived | waive
-                            try:
-                                obj, _ = self._insert_one(ctx, out, allow_stop=False,
-                                                          only=partners)
-                            finally:
-                                ctx.waived = kept
-                if obj is None:
-                    stopped = why
-                    break
-                out.objects.append(obj)
-                added.append(obj)
-                if self.observer is not None:
-                    self.observer.object_added(obj)
-                if on_object is not None:
-                    on_object(obj)
+        while True:
+            if cancel is not None and cancel():
+                raise SynthesisCancelled('superseded by a newer request')
+            if len(out.objects) >= cfg.max_objects:
+                stopped = 'max_objects'
+                break
+            obj, why = self._insert_one(ctx, out)
+            if obj is None and why == 'stop':
+                # A group still owed a partner gets one more draw, as long as the last one
+                # mended something (a partner that found no case's side ends it).
+                broken, partners = owed(out, cfg.owed_partners)
+                if 0 < broken < owing:
+                    owing = broken
+                    obj, _ = self._insert_one(ctx, out, allow_stop=False, only=partners)
+                    waive = waived_when_owed(partners, cfg.insertion_rules)
+                    if obj is None and waive:
+                        # Then where the rules it need not keep would refuse it.
+                        kept, ctx.waived = ctx.waived, ctx.waived | waive
+                        try:
+                            obj, _ = self._insert_one(ctx, out, allow_stop=False,
+                                                      only=partners)
+                        finally:
+                            ctx.waived = kept
+            if obj is None:
+                stopped = why
+                break
+            out.objects.append(obj)
+            added.append(obj)
+            if self.observer is not None:
+                self.observer.object_added(obj)
+            if on_object is not None:
+                on_object(obj)
         self._withdraw(out, added, cfg.owed_partners)
         kept = robot.report(out, cfg.robot, self._robot_state(ctx, out))
         out.meta.update({'generator': 'scene_synth_ros', 'seed': int(seed),
@@ -470,9 +472,8 @@ class Synthesizer:
                 if (zone := partner_zone(scene, rule, category,
                                                 self.vocabulary)) is not None
                 and zone.is_empty)
-        with torch.inference_mode():
-            obj, _ = self._insert_one(ctx, scene, allow_stop=False,
-                                      only=None if category is None else (category,))
+        obj, _ = self._insert_one(ctx, scene, allow_stop=False,
+                                  only=None if category is None else (category,))
         return obj
 
     def suggest(self, scene: Scene, k: int = 5, seed: int = 0, max_tries: int | None = None,
@@ -482,13 +483,12 @@ class Synthesizer:
         committed. STOP is not a proposal. ``config`` as for ``complete``."""
         ctx = self._context(scene.room, seed, scene.objects, config)
         found: list[PlacedObject] = []
-        with torch.inference_mode():
-            for _ in range(max_tries or 6 * k):
-                if len(found) >= k:
-                    break
-                obj, _ = self._insert_one(ctx, scene, allow_stop=False)
-                if obj is not None and all(_distinct(obj, f) for f in found):
-                    found.append(obj)
+        for _ in range(max_tries or 6 * k):
+            if len(found) >= k:
+                break
+            obj, _ = self._insert_one(ctx, scene, allow_stop=False)
+            if obj is not None and all(_distinct(obj, f) for f in found):
+                found.append(obj)
         return found
 
     # ---- one insertion: the paper's pipeline ------------------------------------------------
@@ -505,7 +505,7 @@ class Synthesizer:
             category_logits = ask(ctx.calls, 'category', image, counts)[0][0]
         allowed = self._allowed_categories(ctx, scene, allow_stop)
         if only is not None:
-            keep = torch.zeros_like(allowed)
+            keep = np.zeros_like(allowed)
             keep[[ctx.spec.index(c) for c in only if c in ctx.spec]] = True
             allowed &= keep
         location = None      # (logits, offsets), for the first category that is not STOP
@@ -521,15 +521,14 @@ class Synthesizer:
             if location is None:
                 with ctx.timed('location'):
                     logits, offsets = ask(ctx.calls, 'location', image)
-                    location = (logits[0], None if offsets is None
-                                else offsets[0].float().cpu().numpy())
+                    location = (logits[0], None if offsets is None else offsets[0])
             obj = self._insert_category(ctx, scene, c, location, small)
             if obj is not None:
                 return obj, 'placed'
             allowed[c] = False
         return None, 'nothing_fits'
 
-    def _top_down(self, ctx: _Context, scene: Scene) -> tuple[torch.Tensor, np.ndarray]:
+    def _top_down(self, ctx: _Context, scene: Scene) -> tuple[np.ndarray, np.ndarray]:
         """The scene image the category and location modules see (a batch of one), and the
         scene on the location grid, for the location mask."""
         n, c = ctx.frame.resolution, FIRST_CATEGORY + len(ctx.spec.names)
@@ -539,24 +538,24 @@ class Synthesizer:
             small = image
         else:
             small = self._renderer(ctx.grid.resolution).render(scene, ctx.grid)
-        return torch.from_numpy(full)[None].to(self.device), small
+        return full[None], small
 
-    def _bag_of_categories(self, ctx: _Context, scene: Scene) -> torch.Tensor:
+    def _bag_of_categories(self, ctx: _Context, scene: Scene) -> np.ndarray:
         """How many objects of each category the room holds (a batch of one)."""
         spec = ctx.spec
-        counts = torch.zeros(1, len(spec.names), device=self.device)
+        counts = np.zeros((1, len(spec.names)), dtype=np.float32)
         for o in scene.objects:
             if o.category in spec:
                 counts[0, spec.index(o.category)] += 1
         return counts
 
     def _allowed_categories(self, ctx: _Context, scene: Scene, allow_stop: bool
-                            ) -> torch.Tensor:
+                            ) -> np.ndarray:
         """Which of the categories and STOP (last) may come next: a second-tier category
         only once the room holds something that can support it."""
         spec = ctx.spec
         present = {o.category for o in scene.objects}
-        allowed = torch.ones(len(spec.names) + 1, dtype=torch.bool, device=self.device)
+        allowed = np.ones(len(spec.names) + 1, dtype=bool)
         for k, name in enumerate(spec.names):
             if spec.info(name).tier == 'second' and not set(spec.supports(name)) & present:
                 allowed[k] = False
@@ -564,14 +563,14 @@ class Synthesizer:
         return allowed
 
     @staticmethod
-    def _next_category(ctx: _Context, logits: torch.Tensor, allowed: torch.Tensor) -> int:
+    def _next_category(ctx: _Context, logits: np.ndarray, allowed: np.ndarray) -> int:
         """A draw from the category module's distribution over the ``allowed`` categories
         (paper: Next Object Category)."""
-        p = category_probabilities(logits, allowed).double().cpu().numpy()
+        p = category_probabilities(logits, allowed)
         return int(ctx.rng.choice(len(p), p=p / p.sum()))
 
     def _insert_category(self, ctx: _Context, scene: Scene, c: int,
-                         location: tuple[torch.Tensor, np.ndarray | None], small: np.ndarray
+                         location: tuple[np.ndarray, np.ndarray | None], small: np.ndarray
                          ) -> PlacedObject | None:
         """An object of category ``c``: locations drawn from the masked, tempered location
         distribution (paper: Object Location), at each an orientation (Object Orientation)
@@ -646,7 +645,7 @@ class Synthesizer:
         return mask & ctx.floor_mask, False
 
     def _local_images(self, ctx: _Context, scene: Scene, points: np.ndarray,
-                      yaws: list[float]) -> torch.Tensor:
+                      yaws: list[float]) -> np.ndarray:
         """The scene image translated to each point and turned to each yaw, as a batch."""
         # Crops are the networks' own size whatever the room's: a view around a point.
         n = ctx.bundle.config.model.resolution
@@ -654,7 +653,7 @@ class Synthesizer:
         c = FIRST_CATEGORY + len(ctx.spec.names)
         # One buffer per room, drawn over for every batch of crops (a fresh 750 KB image per
         # crop cost page faults and a copy into the batch). The networks read it before the
-        # next batch is drawn; on a GPU ``to`` copies it anyway.
+        # next batch is drawn; on a GPU it is copied there anyway.
         if ctx.crops is None or ctx.crops.shape[0] < len(points):
             ctx.crops = self.networks.image(n, c, len(points), ctx.calls)
         batch = ctx.crops[:len(points)]
@@ -674,7 +673,7 @@ class Synthesizer:
             r.render(scene, Frame.local(ctx.room.room_type, pt, yaw, n, self.vocabulary),
                      out=batch[k, :c], keep=False)
         ctx.crops_held = these if all(yaw == ctx.frame.yaw for yaw in yaws) else None
-        return torch.from_numpy(batch).to(self.device)
+        return batch
 
     def _orientation(self, ctx: _Context, scene: Scene, c: int, points: np.ndarray
                      ) -> list[float]:
@@ -684,11 +683,11 @@ class Synthesizer:
         with ctx.timed('render'):
             x = self._local_images(ctx, scene, points, [ctx.frame.yaw] * len(points))
         with ctx.timed('orientation'):
-            cats = torch.full((len(points),), c, dtype=torch.long, device=self.device)
-            z = ctx.bundle.networks['orientation'].noise(len(points), ctx.gen, self.device)
+            cats = np.full(len(points), c, dtype=np.int64)
+            z = prior_noise(ctx.rng, len(points), ctx.bundle.latents['orientation'])
             out, snap_logits = ask(ctx.calls, 'orientation', x, cats, z)
-            theta = decode_angle(out, ctx.gen)
-            snap = torch.sigmoid(snap_logits) > ctx.config.snap_threshold
+            theta = decode_angle(out, ctx.rng)
+            snap = sigmoid(snap_logits) > ctx.config.snap_threshold
             return [wrap_angle(ctx.frame.yaw + (snap_angle(th) if s else th))
                     for th, s in zip(theta.tolist(), snap.tolist(), strict=True)]
 
@@ -701,18 +700,17 @@ class Synthesizer:
         with ctx.timed('render'):
             x = self._local_images(ctx, scene, points, yaws)
         with ctx.timed('dimensions'):
-            net = ctx.bundle.networks['dimensions']
-            cats = torch.full((len(points),), c, dtype=torch.long, device=self.device)
-            z = net.noise(len(points), ctx.gen, self.device)
+            b = ctx.bundle
+            cats = np.full(len(points), c, dtype=np.int64)
+            z = prior_noise(ctx.rng, len(points), b.latents['dimensions'])
             log_dims, = ask(ctx.calls, 'dimensions', x, cats, z)
-            log_dims = log_dims.float().cpu()
-            sigma = net.spread(cats)
-            if sigma is not None:
-                # The room's own generator (on the CPU, as for z): the same seed draws the
-                # same footprints in lockstep and alone, on every device.
-                noise = torch.randn(log_dims.shape, generator=ctx.gen, device=ctx.gen.device)
-                log_dims = log_dims + sigma.float().cpu() * noise.cpu()
-            dims = torch.exp(log_dims).tolist()
+            log_dims = log_dims.astype(np.float64)
+            if b.log_sigma is not None:
+                # Drawn from the likelihood the bundle learned, by the room's own generator:
+                # the same seed draws the same footprints in lockstep and alone.
+                noise = ctx.rng.standard_normal(log_dims.shape)
+                log_dims = log_dims + np.exp(b.log_sigma[c].astype(np.float64)) * noise
+            dims = np.exp(log_dims).tolist()
         return [(d[0], d[1]) for d in dims]
 
     # ---- insertion: catalog retrieval and rejection -----------------------------------------
@@ -725,7 +723,7 @@ class Synthesizer:
         models = load_catalog(ctx.config.catalog, self.vocabulary)
         ranked = models.ranked(category, width, depth, ctx.spec.room_type, self.vocabulary)
         best = catalog.footprint_distance(ranked[0], width, depth)
-        drawn = ctx.bundle.networks['dimensions'].log_sigma is not None
+        drawn = ctx.bundle.log_sigma is not None
         slack = 0.0 if drawn else ctx.config.fit_slack
         close = [v for v in ranked
                  if catalog.footprint_distance(v, width, depth) <= best + slack]

@@ -1,6 +1,7 @@
 """Rooms in lockstep (``scene_synth_ros.lockstep``): a group's network calls served as one
 batch per bundle and module, each room's answers those of its own examples; rooms in lockstep
 the rooms made alone but where a batch's last digits tip a draw; one room's failure its own."""
+import numpy as np
 import pytest
 import torch
 
@@ -33,30 +34,30 @@ def test_serve_answers_each_request_with_its_own_examples(synth):
     requests = []
     g = torch.Generator().manual_seed(1)
     for rt in ('bedroom', 'bathroom', 'bedroom'):
-        nets, k = synth.bundle(rt).networks, len(room_spec(rt).names)
+        calls, k = synth.calls(rt), len(room_spec(rt).names)
         channels = FIRST_CATEGORY + k
-        image = torch.rand(1, channels, 64, 64, generator=g)
-        counts = torch.randint(0, 3, (1, k), generator=g).float()
-        crops = torch.rand(3, channels, 64, 64, generator=g)
-        cats = torch.randint(0, k, (3,), generator=g)
-        z = torch.randn(3, nets['orientation'].latent, generator=g)
-        requests += [lockstep.Request(nets, 'category', (image, counts)),
-                     lockstep.Request(nets, 'location', (image,)),
-                     lockstep.Request(nets, 'orientation', (crops, cats, z)),
-                     lockstep.Request(nets, 'dimensions', (crops, cats, z))]
-    with torch.inference_mode():
-        served = lockstep.serve(requests)
-        for r, answer in zip(requests, served, strict=True):
-            alone = lockstep.forward(r.networks, r.module, *r.args)
-            assert len(answer) == len(alone)
-            for a, b in zip(answer, alone, strict=True):
-                if b is None:
-                    assert a is None
-                    continue
-                assert a.shape == b.shape and a.shape[0] == r.size
-                assert torch.allclose(a, b, atol=1e-4, rtol=1e-4), r.module
+        image = torch.rand(1, channels, 64, 64, generator=g).numpy()
+        counts = torch.randint(0, 3, (1, k), generator=g).float().numpy()
+        crops = torch.rand(3, channels, 64, 64, generator=g).numpy()
+        cats = torch.randint(0, k, (3,), generator=g).numpy()
+        z = torch.randn(3, synth.networks.served(rt).latents['orientation'],
+                        generator=g).numpy()
+        requests += [lockstep.Request(calls, 'category', (image, counts)),
+                     lockstep.Request(calls, 'location', (image,)),
+                     lockstep.Request(calls, 'orientation', (crops, cats, z)),
+                     lockstep.Request(calls, 'dimensions', (crops, cats, z))]
+    served = lockstep.serve(requests)
+    for r, answer in zip(requests, served, strict=True):
+        alone = r.networks(r.module, *r.args)
+        assert len(answer) == len(alone)
+        for a, b in zip(answer, alone, strict=True):
+            if b is None:
+                assert a is None
+                continue
+            assert a.shape == b.shape and a.shape[0] == r.size
+            assert np.allclose(a, b, atol=1e-4, rtol=1e-4), r.module
     with pytest.raises(ValueError, match='no network call'):
-        lockstep.forward(synth.bundle('bedroom').networks, 'colour')
+        lockstep.ask(synth.calls('bedroom'), 'colour', np.zeros(1))
 
 
 def test_a_room_alone_in_lockstep_is_the_room_made_alone(synth):
@@ -195,11 +196,11 @@ def test_images_are_drawn_channels_last_as_the_networks_take_them(synth):
                              else channels)
     drawn = renderer.render(scene, out=full[:channels])
     assert (drawn == renderer.render(scene)).all() and not full[channels:].any()
-    image = torch.from_numpy(full)[None]
-    assert image.is_contiguous(memory_format=torch.channels_last)
+    image = full[None]
+    assert np.moveaxis(image, 1, -1).flags.c_contiguous           # channels-last
     batch = lockstep._cat([image, image])
-    assert batch.is_contiguous(memory_format=torch.channels_last)
-    assert torch.equal(batch, torch.cat([image.contiguous()] * 2))
+    assert np.moveaxis(batch, 1, -1).flags.c_contiguous
+    assert np.array_equal(batch, np.concatenate([image, image]))
     conv = next(m for m in synth.bundle('bedroom').networks['location'].modules()
                 if isinstance(m, torch.nn.Conv2d))
     assert conv.weight.is_contiguous(memory_format=torch.channels_last)

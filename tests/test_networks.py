@@ -13,19 +13,23 @@ from scene_synth_ros.networks.bundle import BundleError, build_networks, load_bu
 from scene_synth_ros.networks.config import PipelineConfig, resolve_device
 from scene_synth_ros.networks.cvae import kl_to_prior
 from scene_synth_ros.networks.dimensions import box_sdf, dimensions_elbo
+from scene_synth_ros.networks.draws import (
+    LocationDraws,
+    blob_centre,
+    category_probabilities,
+    decode_angle,
+    location_distribution,
+    prior_noise,
+    sample_pixel,
+    snap_angle,
+)
 from scene_synth_ros.networks.examples import (
     ExampleSource,
     insertion_order,
     placeable,
     rotate_scene,
 )
-from scene_synth_ros.networks.location import (
-    LocationDraws,
-    blob_centre,
-    location_distribution,
-    sample_pixel,
-)
-from scene_synth_ros.networks.orientation import decode_angle, is_snapped, snap_angle
+from scene_synth_ros.networks.orientation import is_snapped
 from scene_synth_ros.paths import config_dir
 from scene_synth_ros.render import COS, SIN, Frame, TopDownRenderer
 from scene_synth_ros.scene import Scene
@@ -347,12 +351,12 @@ def test_example_batches_are_pure_functions_of_their_seed(rooms):
 # ---- location distribution, snapping, SDF ------------------------------------------------------
 def test_location_distribution_masks_and_tempers():
     torch.manual_seed(0)
-    logits = torch.randn(5, 8, 8)
+    logits = torch.randn(5, 8, 8).numpy()
     mask = np.zeros((8, 8), dtype=bool)
     mask[2:6, 1:7] = True
     p1 = location_distribution(logits, 2, mask, 1.0)
     assert p1.sum() == pytest.approx(1.0) and (p1[~mask] == 0).all() and (p1[mask] > 0).all()
-    soft = torch.softmax(logits, 0)[3].numpy().astype(float)
+    soft = torch.softmax(torch.from_numpy(logits), 0)[3].numpy().astype(float)
     expect = np.where(mask, soft, 0)
     assert np.allclose(p1, expect / expect.sum())
     p08 = location_distribution(logits, 2, mask, 0.8)
@@ -375,10 +379,27 @@ def test_snap_and_angle_decoding():
     theta = torch.tensor([0.0, math.pi / 2 + 0.01, math.radians(45), -math.pi + 0.001,
                           math.radians(98), math.radians(-12)])
     assert is_snapped(theta).tolist() == [True, True, False, True, True, False]
-    out = torch.tensor([[10.0, 10.0], [-10.0, -10.0], [0.0, 10.0]])
-    ang = decode_angle(out, torch.Generator().manual_seed(0))
-    assert ang[0].abs() < 0.1 and abs(abs(ang[1]) - math.pi) < 0.1
+    out = np.array([[10.0, 10.0], [-10.0, -10.0], [0.0, 10.0]])
+    ang = decode_angle(out, np.random.default_rng(0))
+    assert abs(ang[0]) < 0.1 and abs(abs(ang[1]) - math.pi) < 0.1
     assert ang[2] == pytest.approx(math.pi / 2, abs=1e-3)
+    # The sign of sin is drawn with the decoder's probability: about half each way at 0.
+    signs = np.sign(decode_angle(np.tile([[0.3, 0.0]], (4000, 1)), np.random.default_rng(1)))
+    assert abs((signs > 0).mean() - 0.5) < 0.03
+
+
+def test_the_category_draw_and_the_prior_noise_are_those_torch_would_give():
+    logits = np.array([2.0, -1.0, 0.5, 3.0])
+    allowed = np.array([True, False, True, True])
+    p = category_probabilities(logits, allowed)
+    want = torch.softmax(torch.tensor(logits).masked_fill(~torch.tensor(allowed),
+                                                          float('-inf')), -1).numpy()
+    assert p.dtype == np.float64 and np.allclose(p, want) and p[1] == 0.0
+    assert np.allclose(category_probabilities(logits), torch.softmax(torch.tensor(logits), -1))
+    z = prior_noise(np.random.default_rng(3), 20000, 4)
+    assert z.shape == (20000, 4) and z.dtype == np.float32
+    assert np.allclose(z.mean(0), 0, atol=0.03) and np.allclose(z.std(0), 1, atol=0.03)
+    assert np.array_equal(z, prior_noise(np.random.default_rng(3), 20000, 4))
 
 
 def test_box_sdf_sign_and_gradient():

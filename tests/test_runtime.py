@@ -6,8 +6,10 @@ are torch's but where those digits tip a draw, and the same seed gives the same 
 sentence."""
 import copy
 import os
+import subprocess
 import sys
 
+import numpy as np
 import pytest
 import torch
 
@@ -19,12 +21,12 @@ from scene_synth_ros.errors import ConfigError
 from scene_synth_ros.geometry import check_scene
 from scene_synth_ros.networks import runtime
 from scene_synth_ros.networks.config import resolve_runtime
+from scene_synth_ros.networks.graphs import TorchCalls, weights_hash
 from scene_synth_ros.networks.runtime import (
     CACHE_ENV,
     MODULE_CALLS,
     ONNX_MAX_BATCH,
     OnnxCalls,
-    forward,
     graph_cache_dir,
     graph_key,
     padded_channels,
@@ -47,17 +49,18 @@ def synth(one_thread):
 
 
 def calls_of(synth, room_type: str, batch: int, channels_last: bool, seed: int) -> list:
-    """One (module, args) of each network call, on random inputs of ``batch`` examples."""
+    """One (module, args) of each network call, on random inputs of ``batch`` examples, as
+    synthesis hands them over: numpy arrays, the images laid out either way."""
     nets = synth.bundle(room_type).networks
     k = len(room_spec(room_type).names)
     n = synth.bundle(room_type).config.model.resolution
     g = torch.Generator().manual_seed(seed)
     layout = torch.channels_last if channels_last else torch.contiguous_format
     image = torch.rand(batch, FIRST_CATEGORY + k, n, n, generator=g).round()
-    image = image.contiguous(memory_format=layout)
-    counts = torch.randint(0, 3, (batch, k), generator=g).float()
-    cats = torch.randint(0, k, (batch,), generator=g)
-    z = torch.randn(batch, nets['orientation'].latent, generator=g)
+    image = image.contiguous(memory_format=layout).numpy()
+    counts = torch.randint(0, 3, (batch, k), generator=g).float().numpy()
+    cats = torch.randint(0, k, (batch,), generator=g).numpy()
+    z = torch.randn(batch, nets['orientation'].latent, generator=g).numpy()
     return [('category', (image, counts)), ('location', (image,)),
             ('orientation', (image, cats, z)), ('dimensions', (image, cats, z))]
 
@@ -73,28 +76,27 @@ def test_onnxruntime_answers_every_call_as_torch_does(synth, tiny_weights, weigh
         # The first call exports at a batch of three; the others run the same graph.
         for batch, channels_last in [(3, True), (1, True), (2, False), (1, False)]:
             for module, args in calls_of(s, room_type, batch, channels_last, seed=batch):
-                with torch.inference_mode():
-                    got = calls(module, *args)
-                    want = forward(nets, module, *args)
+                got = calls(module, *args)
+                want = TorchCalls(nets)(module, *args)
                 assert len(got) == len(want), module
                 for a, b in zip(got, want, strict=True):
                     if b is None:
                         assert a is None, module
                         continue
+                    assert isinstance(a, np.ndarray) and a.dtype == b.dtype, module
                     assert a.shape == b.shape and a.shape[0] == batch, module
-                    scale = float(b.abs().max()) or 1.0
-                    assert float((a - b).abs().max()) <= 1e-4 * scale, (module, batch)
+                    scale = float(np.abs(b).max()) or 1.0
+                    assert float(np.abs(a - b).max()) <= 1e-4 * scale, (module, batch)
         assert calls.exported == ('category', 'dimensions', 'location', 'orientation')
-        offsets = forward(nets, 'location', *calls_of(s, room_type, 1, True, 0)[1][1])[1]
+        offsets = TorchCalls(nets)('location', *calls_of(s, room_type, 1, True, 0)[1][1])[1]
         assert (offsets is not None) == (weights == 'tiny')
         # A batch larger than onnxruntime's limit is torch's to the last digit.
         for module, args in calls_of(s, room_type, ONNX_MAX_BATCH + 1, True, 9):
-            with torch.inference_mode():
-                got, want = calls(module, *args), forward(nets, module, *args)
-            assert all(a is b is None or torch.equal(a, b)
+            got, want = calls(module, *args), TorchCalls(nets)(module, *args)
+            assert all(a is b is None or np.array_equal(a, b)
                        for a, b in zip(got, want, strict=True)), module
     with pytest.raises(ValueError, match='no network call'):
-        s.calls('bedroom')('colour', torch.zeros(1))
+        s.calls('bedroom')('colour', np.zeros(1))
 
 
 def test_rooms_of_onnxruntime_are_torchs_but_for_the_last_digits(synth):
@@ -152,8 +154,7 @@ def test_graphs_are_kept_on_disk_and_read_back_without_an_export(synth, tmp_path
     nets = synth.bundle('bedroom').networks
     args = calls_of(synth, 'bedroom', 1, True, seed=3)
     first = OnnxCalls(nets, cache_dir=tmp_path)
-    with torch.inference_mode():
-        want = {module: first(module, *a) for module, a in args}
+    want = {module: first(module, *a) for module, a in args}
     assert first.loaded == [] and first.exported == tuple(sorted(MODULE_CALLS))
     kept = sorted(p.name.split('-')[0] for p in tmp_path.glob('*.onnx'))
     assert kept == sorted(MODULE_CALLS) and not list(tmp_path.glob('.*'))
@@ -164,10 +165,9 @@ def test_graphs_are_kept_on_disk_and_read_back_without_an_export(synth, tmp_path
         raise AssertionError('exported again')
     monkeypatch.setattr(torch.onnx, 'export', no_export)
     again = OnnxCalls(nets, cache_dir=tmp_path)
-    with torch.inference_mode():
-        for module, a in args:
-            assert all(torch.equal(x, y) for x, y in zip(again(module, *a), want[module],
-                                                          strict=True) if y is not None)
+    for module, a in args:
+        assert all(np.array_equal(x, y) for x, y in zip(again(module, *a), want[module],
+                                                         strict=True) if y is not None)
     assert sorted(again.loaded) == sorted(MODULE_CALLS)
     monkeypatch.undo()
 
@@ -175,17 +175,15 @@ def test_graphs_are_kept_on_disk_and_read_back_without_an_export(synth, tmp_path
     damaged = next(tmp_path.glob('location-*.onnx'))
     damaged.write_bytes(b'not a graph' * 100)
     third = OnnxCalls(nets, cache_dir=tmp_path)
-    with torch.inference_mode():
-        got = third('location', *args[1][1])
-    assert 'location' not in third.loaded and torch.equal(got[0], want['location'][0])
+    got = third('location', *args[1][1])
+    assert 'location' not in third.loaded and np.array_equal(got[0], want['location'][0])
     assert damaged.read_bytes()[:20] != b'not a graph' * 2
 
     # A cache that cannot be written (its directory is a file) costs only the export.
     blocked = tmp_path / 'a file'
     blocked.write_text('x')
     fourth = OnnxCalls(nets, cache_dir=blocked / 'graphs')
-    with torch.inference_mode():
-        assert torch.equal(fourth('dimensions', *args[3][1])[0], want['dimensions'][0])
+    assert np.array_equal(fourth('dimensions', *args[3][1])[0], want['dimensions'][0])
     assert blocked.read_text() == 'x'
 
     # Beyond CACHE_GRAPHS the least recently used graphs go; a graph read back was used.
@@ -195,35 +193,74 @@ def test_graphs_are_kept_on_disk_and_read_back_without_an_export(synth, tmp_path
     for k in (1, 2):
         (small / f'stale-{k}.onnx').write_bytes(b'old')
         os.utime(small / f'stale-{k}.onnx', (1000 * k, 1000 * k))
-    with torch.inference_mode():
-        OnnxCalls(nets, cache_dir=small)('dimensions', *args[3][1])
+    OnnxCalls(nets, cache_dir=small)('dimensions', *args[3][1])
     dims = next(small.glob('dimensions-*.onnx'))
     assert sorted(p.name for p in small.glob('*.onnx')) == sorted([dims.name, 'stale-2.onnx'])
     os.utime(dims, (500, 500))
     reader = OnnxCalls(nets, cache_dir=small)
-    with torch.inference_mode():
-        reader('dimensions', *args[3][1])
-        reader('category', *args[0][1])
+    reader('dimensions', *args[3][1])
+    reader('category', *args[0][1])
     assert reader.loaded == ['dimensions']
     assert {p.name.split('-')[0] for p in small.glob('*.onnx')} == {'dimensions', 'category'}
 
 
 def test_a_graph_is_named_by_the_weights_and_the_inputs(synth):
     nets = synth.bundle('bedroom').networks
-    image = torch.zeros(1, 64, 64, 48)
-    key = graph_key(nets, 'location', (image,))
-    assert key == graph_key(nets, 'location', (image.clone(),))
-    assert key != graph_key(nets, 'location', (torch.zeros(1, 32, 32, 48),))
-    assert key != graph_key(synth.bundle('bathroom').networks, 'location', (image,))
-    # One weight changed by a little: another graph. Only the networks a call runs count.
+    image = np.zeros((1, 64, 64, 48), dtype=np.float32)
+    weights = weights_hash(nets, 'location')
+    key = graph_key(weights, 'location', (image,))
+    assert key == graph_key(weights_hash(nets, 'location'), 'location', (image.copy(),))
+    assert key != graph_key(weights, 'location', (np.zeros((1, 32, 32, 48), np.float32),))
+    assert key != graph_key(weights, 'location', (image.astype(np.float64),))
+    assert weights != weights_hash(synth.bundle('bathroom').networks, 'location')
+    # One weight changed by a little: other weights. Only the networks a call runs count.
     changed = {name: copy.deepcopy(net) if name == 'location' else net
                for name, net in nets.items()}
     with torch.no_grad():
         weight = next(changed['location'].parameters())
         weight[(0,) * weight.dim()] += 1e-6
-    assert key != graph_key(changed, 'location', (image,))
-    assert (graph_key(nets, 'category', (image, torch.zeros(1, 3)))
-            == graph_key(changed, 'category', (image, torch.zeros(1, 3))))
+    assert weights != weights_hash(changed, 'location')
+    assert weights_hash(nets, 'category') == weights_hash(changed, 'category')
+    # A bundle's calls are named by its file's bytes instead: no weight is read for it.
+    calls = synth.calls('bedroom')
+    assert calls.weights == synth.networks.served('bedroom').weights
+    assert len(calls.weights) == 32
+
+
+_WITHOUT_TORCH = """
+import json, sys
+from scene_synth_ros.corpus.generate import empty_room
+from scene_synth_ros.synth import Synthesizer
+synth = Synthesizer()
+scene = synth.generate(empty_room('bedroom', 7, 3), seed=3).scene
+print(json.dumps([[o.category, o.model_id, o.position, o.yaw] for o in scene.objects]))
+print('torch' in sys.modules, synth.calls('bedroom').loaded)
+"""
+
+
+def test_with_its_graphs_and_records_cached_a_process_furnishes_rooms_without_torch(tmp_path):
+    # The node's start-up: importing torch alone is longer than the rest of it. The first
+    # process exports the graphs and keeps the bundles' records; the next reads both and
+    # makes the very same room without importing torch.
+    env = dict(os.environ, **{CACHE_ENV: str(tmp_path / 'cache')})
+
+    def run() -> list[str]:
+        out = subprocess.run([sys.executable, '-c', _WITHOUT_TORCH], env=env, text=True,
+                             capture_output=True, timeout=300, check=True)
+        return out.stdout.splitlines()
+
+    first, again = run(), run()
+    assert first[1].startswith('True')
+    assert again == [first[0], "False ['category', 'location', 'orientation', 'dimensions']"]
+    # The bedroom's record, and a note of every bundle's room type.
+    records = sorted((tmp_path / 'cache').glob('bundle-*.npz'))
+    notes = sorted((tmp_path / 'cache').glob('spec-*.json'))
+    assert (len(records), len(notes)) == (1, len(Synthesizer().room_types))
+    # A record that cannot be read is made again from the bundle, and changes no room.
+    for r in records:
+        r.write_bytes(b'damaged')
+    assert run()[0] == first[0]
+    assert all(r.read_bytes() != b'damaged' for r in records)
 
 
 def test_the_cache_directory_follows_the_environment(monkeypatch, tmp_path):
@@ -249,14 +286,13 @@ def test_images_drawn_with_zero_channels_are_taken_as_they_are(synth):
     assert image.shape == (calls.image_channels, 64, 64)
     assert not image[c:].any()
     module, args = calls_of(synth, 'bedroom', 1, True, seed=5)[1]
-    image[:c] = args[0][0].numpy()
-    drawn = torch.from_numpy(image)[None]
+    image[:c] = args[0][0]
+    drawn = image[None]
     assert calls._image(drawn).base is not None          # no copy: a view of the drawing
-    with torch.inference_mode():
-        a, b = calls(module, drawn)[0], calls(module, *args)[0]
-    assert torch.equal(a, b)
+    a, b = calls(module, drawn)[0], calls(module, *args)[0]
+    assert np.array_equal(a, b)
     with pytest.raises(ValueError, match='an image of 40 channels for networks that take'):
-        calls(module, torch.zeros(1, 40, 64, 64))
+        calls(module, np.zeros((1, 40, 64, 64), np.float32))
     # torch draws the channels the networks take, no more.
     by_torch = Synthesizer(config=SynthConfig(runtime='torch'))
     assert by_torch.networks.image(64, c, calls=by_torch.calls('bedroom')).shape[0] == c

@@ -225,7 +225,7 @@ def test_the_dimensions_crops_are_the_crops_drawn_at_their_yaws(synth):
 
     def crops(sc, pts, ys):
         # For onnxruntime, the zero channels its graphs take follow the drawn ones.
-        x = synth._local_images(ctx, sc, pts, ys).numpy()
+        x = synth._local_images(ctx, sc, pts, ys)
         assert not x[:, channels:].any()
         return x[:, :channels]
 
@@ -267,9 +267,8 @@ def test_dimensions_drawn_from_a_learned_spread(tiny_weights, tmp_path):
     yaws = [0.3] * 256
 
     def drawn(synth, log_sigma, seed=5):
-        net = synth.bundle('bathroom').networks['dimensions']
-        with torch.no_grad():
-            net.log_sigma[0] = torch.tensor(log_sigma)
+        # What synthesis reads of the bundle, the learned sigmas among it.
+        synth.networks.served('bathroom').log_sigma[0] = log_sigma
         ctx = synth._context(room, seed)
         return np.log(np.array(synth._dimensions(ctx, Scene(room, []), 0, points, yaws)))
 
@@ -352,11 +351,13 @@ def test_snap_threshold(tiny_weights):
 
     def off_axis(scene):
         return [abs(math.remainder(o.yaw - a, math.pi / 2)) for o in scene.objects]
-    snapped = always.generate(room, seed=3).scene
-    assert snapped.objects and max(off_axis(snapped)) < 1e-9
-    assert check_scene(snapped).ok
-    free = never.generate(room, seed=3).scene
-    assert free.objects and max(off_axis(free)) > 1e-3
+    # The tiny networks stop at once in some rooms: a few seeds, so that objects are placed.
+    snapped = [always.generate(room, seed=s).scene for s in range(3, 7)]
+    assert sum(len(sc.objects) for sc in snapped) > 0
+    assert max(max(off_axis(sc), default=0.0) for sc in snapped) < 1e-9
+    assert all(check_scene(sc).ok for sc in snapped)
+    free = [never.generate(room, seed=s).scene for s in range(3, 7)]
+    assert max(max(off_axis(sc), default=0.0) for sc in free) > 1e-3
 
 
 def test_max_objects_and_temperature(tiny_weights):

@@ -51,7 +51,7 @@ def _check_weights(cfg: BatchConfig) -> Path:
     if not synth.weights_dir.is_dir():
         raise BatchError(f'{synth.weights_dir}: no such weights directory')
     for rt in cfg.source.room_types:
-        synth.bundle(rt)
+        synth.networks.served(rt)
     return synth.weights_dir.resolve()
 
 

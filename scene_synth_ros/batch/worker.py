@@ -37,12 +37,11 @@ import tempfile
 import time
 from typing import Iterator
 
-import torch
-
 from .. import export, lockstep
 from ..corpus.generate import first_shell
 from ..errors import SceneSynthError, sentence
 from ..geometry import check_scene
+from ..networks.runtime import set_threads
 from ..plot import save_png
 from ..scene import Scene
 from ..schema import dump_scene
@@ -162,7 +161,7 @@ class Worker:
     def __init__(self, spec: WorkerSpec):
         # One thread each: the workers are the parallelism, and threads fighting over the
         # same cores are slower than one each.
-        torch.set_num_threads(1)
+        set_threads(1)
         self.spec = spec
         self.synth = Synthesizer(spec.weights_dir, spec.synthesis)
         self.name = f'{socket.gethostname()}:{os.getpid()}'

@@ -30,7 +30,7 @@ def weights_vocabulary(args) -> Vocabulary:
     the data set ``args.weights_dir``'s bundles were trained on, else the paper's. ``main``
     sets it as ``args.vocabulary``."""
     if getattr(args, 'weights_dir', None) and getattr(args, 'defines_room_types', True):
-        from ..networks.bundle import weights_vocabulary as of_weights
+        from ..networks.served import weights_vocabulary as of_weights
         return of_weights(args.weights_dir)
     return PAPER
 

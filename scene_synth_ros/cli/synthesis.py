@@ -322,7 +322,7 @@ def _data_grid(args) -> tuple[list, list[str]]:
     for rt in synth.room_types:
         if rt not in in_data:
             continue
-        seed = synth.bundle(rt).config.train.corpus_seed
+        seed = synth.networks.served(rt).config.train.corpus_seed
         split = split_rooms(args.data, synth.vocabulary.spec(rt), seed,
                             held_out_rooms=args.per_type)
         for name, real in zip(split.held_out_names, split.held_out, strict=True):

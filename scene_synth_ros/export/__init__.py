@@ -18,11 +18,13 @@ show the user's mesh, stretched to the object's size; the others the procedural 
 stands still.
 
 ``FORMATS`` names them for the command line and the node (``export_formats``), and
-``write`` writes one; ``parse_formats`` reads a comma list of names.
+``write`` writes one; ``parse_formats`` reads a comma list of names. A format's module is
+imported when it first writes (the node starts without trimesh, pxr and their kin).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
+from importlib import import_module
 from pathlib import Path
 from typing import Callable
 
@@ -38,12 +40,19 @@ from .architecture import (
     room_meshes,
     wall_boxes,
 )
-from .gltf import export_gltf
-from .mjcf import export_mjcf
-from .physics import Body, PhysicsConfig, Piece, scene_bodies
-from .sdf import export_sdf
-from .urdf import export_urdf
-from .usd import export_usd
+
+# The names imported from their modules when first asked for (PEP 562).
+_LAZY = {'export_gltf': 'gltf', 'export_mjcf': 'mjcf', 'export_sdf': 'sdf',
+         'export_urdf': 'urdf', 'export_usd': 'usd', 'Body': 'physics',
+         'PhysicsConfig': 'physics', 'Piece': 'physics', 'scene_bodies': 'physics'}
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
+    value = getattr(import_module(f'.{_LAZY[name]}', __name__), name)
+    globals()[name] = value
+    return value
 
 
 class UnknownFormat(SceneSynthError, ValueError):
@@ -52,20 +61,25 @@ class UnknownFormat(SceneSynthError, ValueError):
 
 @dataclass(frozen=True)
 class Format:
-    """One export format: its name, the suffix the node's files get, and its writer."""
+    """One export format: its name, the suffix the node's files get, and the name of its
+    writer (``writer`` gives the function)."""
 
     name: str
     suffix: str
-    writer: Callable
+    writer_name: str
     meshes: bool = True          # whether it writes mesh files (a mesh folder applies)
+
+    @property
+    def writer(self) -> Callable:
+        return __getattr__(self.writer_name)
 
 
 FORMATS: dict[str, Format] = {f.name: f for f in (
-    Format('sdf', '.sdf', export_sdf),
-    Format('gltf', '.glb', export_gltf, meshes=False),
-    Format('mjcf', '.xml', export_mjcf),
-    Format('urdf', '.urdf', export_urdf),
-    Format('usd', '.usd', export_usd),
+    Format('sdf', '.sdf', 'export_sdf'),
+    Format('gltf', '.glb', 'export_gltf', meshes=False),
+    Format('mjcf', '.xml', 'export_mjcf'),
+    Format('urdf', '.urdf', 'export_urdf'),
+    Format('usd', '.usd', 'export_usd'),
 )}
 
 

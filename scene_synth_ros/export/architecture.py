@@ -10,10 +10,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 import itertools
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
-import trimesh
+
+if TYPE_CHECKING:
+    import trimesh
 
 from ..scene import Room
 
@@ -66,6 +69,7 @@ def wall_boxes(room: Room, thickness: float = WALL_THICKNESS) -> list[WallBox]:
 
 
 def _box_mesh(box: WallBox) -> trimesh.Trimesh:
+    import trimesh  # meshes only: the node's markers read the walls' boxes without it
     m = trimesh.creation.box(extents=box.size)
     t = trimesh.transformations.rotation_matrix(box.yaw, (0, 0, 1))
     t[:3, 3] = box.centre
@@ -76,6 +80,7 @@ def _box_mesh(box: WallBox) -> trimesh.Trimesh:
 def floor_slab(room: Room, thickness: float = FLOOR_THICKNESS) -> trimesh.Trimesh:
     """The floor outline extruded from z = -thickness to 0. Triangulated with shapely's
     constrained Delaunay triangulation (trimesh's own needs an optional engine)."""
+    import trimesh
     pts = np.asarray(room.floor, dtype=float)          # counter-clockwise
     n = len(pts)
     tris = shapely.constrained_delaunay_triangles(room.polygon)

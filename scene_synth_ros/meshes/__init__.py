@@ -12,40 +12,33 @@ The modules: ``materials`` (the palette), ``builder`` (primitives, ``Part``, ``B
 ``registry`` (category -> builder, ``build_parts``, ``build_mesh``), ``export`` (GLB and
 OBJ files), ``shipped`` (the OBJ files installed with the package, which RViz markers refer
 to as ``package://`` URIs), ``assembly`` (whole scenes) and ``preview`` (pictures for
-people). This package re-exports the public API so callers need not know the layout.
+people). This package re-exports the public API so callers need not know the layout; each name is
+imported from its module when first asked for (PEP 562), so that the node, which reads
+the shipped meshes' names for its markers, does not import trimesh to start.
 """
 from __future__ import annotations
 
-from .assembly import object_transform, scene_mesh, variant_for
-from .builder import Builder, Part, builds
-from .export import (
-    export_catalog,
-    export_model,
-    material_meshes,
-    mesh_path,
-    model_scene,
-    mtl_text,
-    obj_text,
-)
-from .materials import BOOK_COVERS, MATERIALS, Material
-from .preview import render_image, render_preview, save_contact_sheet
-from .registry import BUILDERS, build_mesh, build_parts, builder_for
-from .shipped import (
-    file_uri,
-    mesh_scale,
-    package_uri,
-    shipped_files,
-    shipped_name,
-    shipped_variant,
-    user_marker,
-    write_shipped_meshes,
-)
+from importlib import import_module
 
-__all__ = [
-    'BOOK_COVERS', 'BUILDERS', 'MATERIALS', 'Builder', 'Material', 'Part', 'build_mesh',
-    'build_parts', 'builder_for', 'builds', 'export_catalog', 'export_model', 'file_uri',
-    'material_meshes', 'mesh_path', 'mesh_scale', 'model_scene', 'mtl_text', 'obj_text',
-    'object_transform', 'package_uri', 'render_image', 'render_preview', 'save_contact_sheet',
-    'scene_mesh', 'shipped_files', 'shipped_name', 'shipped_variant', 'user_marker',
-    'variant_for', 'write_shipped_meshes',
-]
+# Where each public name is defined.
+_MODULES = {name: module for module, defined in (
+    ('assembly', ('object_transform', 'scene_mesh', 'variant_for')),
+    ('builder', ('Builder', 'Part', 'builds')),
+    ('export', ('export_catalog', 'export_model', 'material_meshes', 'mesh_path',
+                'model_scene', 'mtl_text', 'obj_text')),
+    ('materials', ('BOOK_COVERS', 'MATERIALS', 'Material')),
+    ('preview', ('render_image', 'render_preview', 'save_contact_sheet')),
+    ('registry', ('BUILDERS', 'build_mesh', 'build_parts', 'builder_for')),
+    ('shipped', ('file_uri', 'mesh_scale', 'package_uri', 'shipped_files', 'shipped_name',
+                 'shipped_variant', 'user_marker', 'write_shipped_meshes')),
+) for name in defined}
+
+__all__ = sorted(_MODULES)
+
+
+def __getattr__(name: str):
+    if name not in _MODULES:
+        raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
+    value = getattr(import_module(f'.{_MODULES[name]}', __name__), name)
+    globals()[name] = value
+    return value

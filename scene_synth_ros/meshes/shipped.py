@@ -27,7 +27,6 @@ from .. import catalog
 from ..catalog import Catalog, ModelVariant, UserModel
 from ..categories import CATEGORIES
 from ..files import safe_name
-from .export import mtl_text, obj_text
 
 PACKAGE = 'scene_synth_ros'
 SUFFIXES = ('.obj', '.mtl')
@@ -87,6 +86,7 @@ def mesh_scale(obj, variant: ModelVariant) -> tuple[float, float, float]:
 def shipped_files() -> dict[str, bytes]:
     """Every file of the shipped ``meshes/`` folder, by name: per catalog model its OBJ and,
     just before it, the MTL it names. Text with ``\\n`` line ends, the same bytes everywhere."""
+    from .export import mtl_text, obj_text  # trimesh: only writing the files needs it
     out = {}
     for v in catalog.all_variants():
         obj_name = shipped_name(v.model_id)

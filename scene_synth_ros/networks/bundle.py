@@ -12,7 +12,7 @@ networks know (``weights_vocabulary``). A bundle without one uses the paper's ta
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import cached_property, lru_cache
+from functools import cached_property
 import json
 from pathlib import Path
 from typing import Any
@@ -22,21 +22,25 @@ from torch import nn
 
 from ..allowance import STRICT, Allowance
 from ..categories import PAPER, RoomTypeSpec, Vocabulary
-from ..errors import RoomTypeConflict, SceneSynthError
 from ..files import writing_together
 from ..render import num_channels
 from . import NETWORKS
 from .category import CategoryModel
 from .config import ModelConfig, PipelineConfig
 from .dimensions import DimensionsModel
+from .graphs import image_channels
 from .location import LocationModel
 from .orientation import OrientationModel, SnapModel
+from .served import (  # noqa: F401  (where they were defined once: imported from here)
+    BundleError,
+    Served,
+    bundle_path,
+    bundle_specs,
+    spec_in_bundle,
+    weights_vocabulary,
+)
 
 FORMAT = 1
-
-
-class BundleError(SceneSynthError):
-    """A weights file that is missing, unreadable or does not match the code."""
 
 
 def build_networks(room_type: str, cfg: ModelConfig, seed: int | None = None,
@@ -88,11 +92,6 @@ class Bundle:
         return PAPER if self.spec is None else PAPER.with_specs([self.spec])
 
 
-def bundle_path(weights_dir: str | Path, room_type: str,
-                vocabulary: Vocabulary = PAPER) -> Path:
-    return Path(weights_dir) / f'{vocabulary.resolve(room_type)}.pt'
-
-
 def save_bundle(bundle: Bundle, path: str | Path) -> None:
     data: dict[str, Any] = {
         'format': FORMAT, 'room_type': bundle.room_type,
@@ -112,51 +111,6 @@ def save_bundle(bundle: Bundle, path: str | Path) -> None:
         torch.save(data, tmp / path.name)
 
 
-def bundle_specs(weights_dir: str | Path) -> dict[str, RoomTypeSpec | None]:
-    """The room types of the bundles in ``weights_dir``, each with the data set's category
-    set it carries (None: the paper's), without building any network. A file that is not
-    a readable bundle counts by its name, with None: loading it names what is wrong."""
-    out: dict[str, RoomTypeSpec | None] = {}
-    for path in sorted(Path(weights_dir).glob('*.pt')):
-        try:
-            st = path.stat()
-            room_type, spec = _bundle_spec(str(path), st.st_mtime_ns, st.st_size)
-        except (OSError, BundleError):
-            room_type, spec = path.stem, None
-        out[room_type] = spec
-    return out
-
-
-@lru_cache(maxsize=64)
-def _bundle_spec(path: str, mtime: int, size: int) -> tuple[str, RoomTypeSpec | None]:
-    try:
-        # mmap: the tensors stay on disk, only the small entries are read
-        data = torch.load(path, map_location='cpu', weights_only=True, mmap=True)
-        return str(data['room_type']), _stored_spec(data)
-    except Exception as e:  # any unreadable file: the caller skips it
-        raise BundleError(f'{path}: {type(e).__name__}') from None
-
-
-def _stored_spec(data: dict) -> RoomTypeSpec | None:
-    """The data set's category set a bundle's dict carries (None: the paper's);
-    ValueError when it is of another room type than the bundle."""
-    if 'room_type_spec' not in data:
-        return None
-    spec = RoomTypeSpec.from_dict(json.loads(data['room_type_spec']))
-    if spec.room_type != data['room_type']:
-        raise ValueError(f'its category set is of room type {spec.room_type!r}')
-    return spec
-
-
-def weights_vocabulary(weights_dir: str | Path) -> Vocabulary:
-    """What the networks in ``weights_dir`` know: the paper's table with the category sets
-    of the data sets their bundles were trained on. Reads no network."""
-    try:
-        return PAPER.with_specs(s for s in bundle_specs(weights_dir).values() if s is not None)
-    except RoomTypeConflict as e:
-        raise BundleError(f'{weights_dir}: {e}') from None
-
-
 def load_bundle(path: str | Path, device: str | torch.device = 'cpu') -> Bundle:
     """The networks of one room type, in eval mode on ``device``, with the category set
     they were trained on (``Bundle.vocabulary``). Raises ``BundleError`` naming the file and
@@ -173,7 +127,7 @@ def load_bundle(path: str | Path, device: str | torch.device = 'cpu') -> Bundle:
         raise BundleError(f'{path}: not a scene_synth_ros weights bundle of format {FORMAT}')
     try:
         cfg = PipelineConfig.from_dict(json.loads(data['config']))
-        spec = _stored_spec(data)
+        spec = spec_in_bundle(data)
         vocabulary = PAPER if spec is None else PAPER.with_specs([spec])
         rt = vocabulary.resolve(data['room_type'])
         nets = build_networks(rt, cfg.model, vocabulary=vocabulary)
@@ -189,3 +143,19 @@ def load_bundle(path: str | Path, device: str | torch.device = 'cpu') -> Bundle:
     except (KeyError, ValueError, RuntimeError, TypeError) as e:
         raise BundleError(f'{path}: weights do not match the networks of this version '
                           f'({type(e).__name__}: {str(e).splitlines()[0]})') from None
+
+
+def served_record(bundle: Bundle, weights: str) -> Served:
+    """What synthesis reads of ``bundle`` besides its calls (``served.Served``); ``weights``
+    names the file it came from (``served.file_hash``)."""
+    dims = bundle.networks['dimensions']
+    return Served(
+        room_type=bundle.room_type, config=bundle.config, models=list(bundle.models),
+        cooccurrence=bundle.cooccurrence.double().cpu().numpy(), spec=bundle.spec,
+        allowance=bundle.allowance,
+        latents={name: int(bundle.networks[name].latent)
+                 for name in ('orientation', 'dimensions')},
+        log_sigma=(None if dims.log_sigma is None
+                   else dims.log_sigma.detach().float().cpu().numpy()),
+        location_multiple=int(bundle.networks['location'].multiple),
+        channels=image_channels(bundle.networks), weights=weights, metrics=bundle.metrics)

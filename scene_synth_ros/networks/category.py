@@ -23,12 +23,3 @@ class CategoryModel(nn.Module):
     def forward(self, image: torch.Tensor, counts: torch.Tensor) -> torch.Tensor:
         feats = torch.cat([self.encoder(image), torch.relu(self.counts(counts))], dim=1)
         return self.head(feats)
-
-
-def category_probabilities(logits: torch.Tensor, allowed: torch.Tensor | None = None
-                           ) -> torch.Tensor:
-    """Softmax of one example's logits with the categories not ``allowed`` (bool, C + 1)
-    given zero probability; STOP stays allowed unless the mask says otherwise."""
-    if allowed is not None:
-        logits = logits.masked_fill(~allowed, float('-inf'))
-    return torch.softmax(logits, dim=-1)

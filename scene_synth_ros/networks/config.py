@@ -313,6 +313,12 @@ def resolve_device(name: str):
     return torch.device(name)
 
 
+def device_name(name: str) -> str:
+    """``cpu`` or ``cuda`` for ``cpu | cuda | auto`` (``resolve_device``); the CPU is named
+    without importing torch."""
+    return name if name == 'cpu' else resolve_device(name).type
+
+
 # What runs synthesis's forward passes (``networks/runtime.py``).
 RUNTIMES = ('auto', 'torch', 'onnxruntime')
 
@@ -327,15 +333,17 @@ def onnxruntime_available() -> bool:
 
 def resolve_runtime(runtime: str, device) -> str:
     """``torch`` or ``onnxruntime`` for ``runtime`` (one of ``RUNTIMES``) on ``device`` (a
-    torch device), as ``runtime.py`` says; ValueError, one sentence, where that cannot be."""
+    torch device or its name), as ``runtime.py`` says; ValueError, one sentence, where that
+    cannot be."""
+    device_type = getattr(device, 'type', device)
     if runtime not in RUNTIMES:
         raise ValueError(f'no runtime {quoted(runtime)}; the runtimes are {", ".join(RUNTIMES)}')
     if runtime == 'torch':
         return runtime
     if runtime == 'auto':
-        return 'onnxruntime' if device.type == 'cpu' and onnxruntime_available() else 'torch'
-    if device.type != 'cpu':
-        raise ValueError(f'the onnxruntime runtime runs on the CPU, not on {device.type}; '
+        return 'onnxruntime' if device_type == 'cpu' and onnxruntime_available() else 'torch'
+    if device_type != 'cpu':
+        raise ValueError(f'the onnxruntime runtime runs on the CPU, not on {device_type}; '
                          'use the torch runtime there')
     if not onnxruntime_available():
         raise ValueError('the onnxruntime runtime needs the onnxruntime package '

@@ -1,89 +1,128 @@
 """The networks of one weights directory as synthesis runs them.
 
-Each room type's bundle is loaded on the device once, on first use, with its batch norms
-folded into the convolutions (``blocks.fold_batch_norms``) and, on the CPU, its weights laid
-out channels-last: oneDNN convolves images of some 40 channels so laid out faster
+Each room type is made ready once, on first use: what synthesis reads of its bundle
+(``served.Served``) and its four calls (``runtime.MODULE_CALLS``), run by onnxruntime
+(``runtime.OnnxCalls``) or torch (``graphs.TorchCalls``). Under onnxruntime, a bundle whose
+record and graphs are in the cache is served from there, and torch is not imported; else the
+bundle is loaded with torch, on ``device``, with its batch norms folded into the
+convolutions (``blocks.fold_batch_norms``) and, on the CPU, its weights laid out
+channels-last: oneDNN convolves images of some 40 channels so laid out faster
 (docs/design/investigations.md), and images drawn that way need no copy to get there
-(``image``). The four calls of a room type run in torch or, with runtime ``onnxruntime``, in
-onnxruntime sessions (``runtime.OnnxCalls``); ``prepare`` readies them before any room.
+(``image``). ``prepare`` readies a room type's calls before any room.
 """
 from __future__ import annotations
 
 from pathlib import Path
 
 import numpy as np
-import torch
 
 from ..categories import Vocabulary
 from ..errors import sentence
 from ..render import FIRST_CATEGORY
-from .blocks import fold_batch_norms
-from .bundle import Bundle, bundle_path, load_bundle
+from . import runtime
 from .runtime import OnnxCalls
+from .served import BundleError, Served, bundle_path, file_hash, keep_record, read_record
 
 
 class LoadedNetworks:
-    """The bundles of ``weights_dir``'s room types on ``device``, run by ``runtime`` (torch or
-    onnxruntime); room types are resolved in ``vocabulary``."""
+    """The bundles of ``weights_dir``'s room types on ``device`` (``cpu`` or ``cuda``), run by
+    ``runtime`` (torch or onnxruntime); room types are resolved in ``vocabulary``."""
 
-    def __init__(self, weights_dir: Path, device: torch.device, runtime: str,
-                 vocabulary: Vocabulary):
+    def __init__(self, weights_dir: Path, device: str, runtime: str, vocabulary: Vocabulary):
         self.weights_dir, self.device, self.runtime = weights_dir, device, runtime
         self.vocabulary = vocabulary
-        self.channels_last = device.type == 'cpu'
-        self._bundles: dict[str, Bundle] = {}
-        self._calls: dict[str, dict | OnnxCalls] = {}   # what ``lockstep.ask`` gets
+        self.channels_last = device == 'cpu'
+        self._bundles: dict = {}                    # torch ``Bundle``s, by room type
+        self._served: dict[str, Served] = {}
+        self._calls: dict = {}                      # what ``lockstep.ask`` gets
 
-    def bundle(self, room_type: str) -> Bundle:
-        """The networks of ``room_type``, ready for inference; ``BundleError`` names a bad
-        file."""
+    def bundle(self, room_type: str):
+        """The torch networks of ``room_type`` (a ``bundle.Bundle``), ready for inference;
+        ``BundleError`` names a bad file."""
         rt = self.vocabulary.resolve(room_type)
         if rt not in self._bundles:
-            bundle = load_bundle(bundle_path(self.weights_dir, rt, self.vocabulary), self.device)
+            import torch
+
+            from .blocks import fold_batch_norms
+            from .bundle import load_bundle
+            runtime.set_threads(runtime.threads())    # what was asked of it before it loaded
+            bundle = load_bundle(self._path(rt), self.device)
             for net in bundle.networks.values():
                 fold_batch_norms(net)
                 if self.channels_last:
                     net.to(memory_format=torch.channels_last)
             self._bundles[rt] = bundle
-            self._calls[rt] = (OnnxCalls(bundle.networks) if self.runtime == 'onnxruntime'
-                               else bundle.networks)
         return self._bundles[rt]
 
-    def calls(self, room_type: str) -> dict | OnnxCalls:
-        """The networks of ``room_type`` as synthesis calls them (``runtime``): the bundle's
-        torch networks, or their ``OnnxCalls``."""
-        self.bundle(room_type)
+    def _path(self, rt: str) -> Path:
+        path = bundle_path(self.weights_dir, rt, self.vocabulary)
+        if not path.is_file():
+            raise BundleError(f'{path}: no such weights file')
+        return path
+
+    def served(self, room_type: str) -> Served:
+        """What synthesis reads of ``room_type``'s bundle, from the cache where it can be
+        (onnxruntime), else from the bundle (kept in the cache for the next process)."""
+        rt = self.vocabulary.resolve(room_type)
+        if rt in self._served:
+            return self._served[rt]
+        path = self._path(rt)
+        record = read_record(path) if self.runtime == 'onnxruntime' else None
+        if record is None:
+            from .bundle import served_record
+            bundle = self.bundle(rt)
+            try:
+                weights = file_hash(path)
+            except OSError as e:
+                raise BundleError(f'{path}: cannot be read ({e.strerror})') from None
+            record = served_record(bundle, weights)
+            if self.runtime == 'onnxruntime':
+                keep_record(record)
+        if self.runtime == 'onnxruntime':
+            calls = OnnxCalls(lambda: self.bundle(rt).networks, record.weights,
+                              record.channels)
+        else:
+            from .graphs import TorchCalls
+            calls = TorchCalls(self.bundle(rt).networks, self.device)
+        self._served[rt], self._calls[rt] = record, calls
+        return record
+
+    def calls(self, room_type: str):
+        """The networks of ``room_type`` as synthesis calls them (``runtime``): an
+        ``OnnxCalls`` or a ``graphs.TorchCalls``."""
+        self.served(room_type)
         return self._calls[self.vocabulary.resolve(room_type)]
 
     def prepare(self, room_type: str, fall_back: bool) -> str | None:
-        """Load ``room_type``'s bundle and, in onnxruntime, have each of its calls exported,
-        or read from the cache, and in a session: one pass of each on an empty image, which
-        draws nothing from any seed. None when every call runs; else the sentence saying which
-        call onnxruntime cannot run, and with ``fall_back`` the room type's calls are torch's
-        from then on."""
-        bundle = self.bundle(room_type)
+        """Ready ``room_type``'s record and calls and, in onnxruntime, have each call's graph
+        read from the cache, or exported, and in a session: one pass of each on an empty
+        image, which draws nothing from any seed. None when every call runs; else the
+        sentence saying which call onnxruntime cannot run, and with ``fall_back`` the room
+        type's calls are torch's from then on."""
+        record = self.served(room_type)
         calls = self.calls(room_type)
         if not isinstance(calls, OnnxCalls):
             return None
-        n = bundle.config.model.resolution
-        c = FIRST_CATEGORY + len(self.vocabulary.spec(bundle.room_type).names)
+        n = record.config.model.resolution
+        c = FIRST_CATEGORY + len(self.vocabulary.spec(record.room_type).names)
         drawn = self.image(n, c, calls=calls)
         drawn[:c] = 0.0
-        image = torch.from_numpy(drawn)[None]
-        cats = torch.zeros(1, dtype=torch.long)
-        nets = bundle.networks
+        image = drawn[None]
+        cats = np.zeros(1, dtype=np.int64)
         module = 'category'
         try:
-            with torch.inference_mode():
-                calls(module, image, torch.zeros(1, c - FIRST_CATEGORY))
-                module = 'location'
-                calls(module, image)
-                for module in ('orientation', 'dimensions'):
-                    calls(module, image, cats, torch.zeros(1, nets[module].latent))
+            calls(module, image, np.zeros((1, c - FIRST_CATEGORY), dtype=np.float32))
+            module = 'location'
+            calls(module, image)
+            for module in ('orientation', 'dimensions'):
+                calls(module, image, cats,
+                      np.zeros((1, record.latents[module]), dtype=np.float32))
         except Exception as e:   # whatever the exporter or onnxruntime raised
             if fall_back:
-                self._calls[bundle.room_type] = nets
-            return sentence(f'onnxruntime cannot run the {bundle.room_type} networks\' '
+                from .graphs import TorchCalls
+                self._calls[record.room_type] = TorchCalls(
+                    self.bundle(record.room_type).networks, self.device)
+            return sentence(f'onnxruntime cannot run the {record.room_type} networks\' '
                             f'{module} call ({type(e).__name__}: {sentence(e, 160)}); runtime '
                             f'torch runs them')
         return None

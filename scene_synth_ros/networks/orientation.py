@@ -47,24 +47,10 @@ def orientation_elbo(out: torch.Tensor, target: torch.Tensor, mu, logvar,
     return (recon + kl_weight * kl).mean(), recon + kl
 
 
-def decode_angle(out: torch.Tensor, generator: torch.Generator | None = None) -> torch.Tensor:
-    """Angles from decoder outputs: cos from the first, the sign of sin drawn from the
-    second's probability."""
-    c = torch.tanh(out[:, 0]).clamp(-1.0, 1.0)
-    positive = torch.rand(out.shape[0], generator=generator) < torch.sigmoid(out[:, 1]).cpu()
-    sign = positive.to(c.device).float() * 2 - 1
-    return torch.atan2(sign * torch.sqrt((1 - c * c).clamp_min(0.0)), c)
-
-
 def is_snapped(theta: torch.Tensor, tol: float = SNAP_TOLERANCE) -> torch.Tensor:
     """Whether angles lie within ``tol`` of a multiple of 90 degrees."""
     r = torch.remainder(theta, math.pi / 2)
     return torch.minimum(r, math.pi / 2 - r) < tol
-
-
-def snap_angle(theta: float) -> float:
-    """The nearest multiple of 90 degrees."""
-    return round(theta / (math.pi / 2)) * (math.pi / 2)
 
 
 class SnapModel(nn.Module):

@@ -23,7 +23,19 @@ CATALOG.json`` on ``generate``, ``complete`` and ``export``.
 """
 from __future__ import annotations
 
-from .build import BuildReport, build_catalog
-from .store import load_catalog, read_catalog, write_catalog
+from importlib import import_module
 
-__all__ = ['BuildReport', 'build_catalog', 'load_catalog', 'read_catalog', 'write_catalog']
+# Where each public name is defined; imported when first asked for (PEP 562), so that using a
+# catalog file does not import the mesh readers that building one needs.
+_MODULES = {'BuildReport': 'build', 'build_catalog': 'build', 'load_catalog': 'store',
+            'read_catalog': 'store', 'write_catalog': 'store'}
+
+__all__ = sorted(_MODULES)
+
+
+def __getattr__(name: str):
+    if name not in _MODULES:
+        raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
+    value = getattr(import_module(f'.{_MODULES[name]}', __name__), name)
+    globals()[name] = value
+    return value

@@ -16,7 +16,6 @@ import numpy as np
 from ..catalog import UserModel
 from ..categories import PAPER, Vocabulary
 from ..errors import number
-from ..meshes.user import load_triangles
 from .axes import parse_axis, to_package_frame
 from .spec import ModelSpec
 
@@ -49,6 +48,7 @@ def measure(spec: ModelSpec, vocabulary: Vocabulary = PAPER) -> UserModel | str:
     problem = _file_problem(spec.file)
     if problem:
         return problem
+    from ..meshes.user import load_triangles  # trimesh: building a catalog only
     try:
         meshes = load_triangles(spec.file)
     except Exception as e:          # any reader failure is this file's problem, not ours

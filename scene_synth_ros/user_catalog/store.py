@@ -30,14 +30,12 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import trimesh
 
 from .. import catalog
 from ..catalog import Catalog, UserModel
 from ..categories import PAPER, Vocabulary
 from ..errors import CatalogError, quoted
 from ..files import read_json, safe_name, write_atomic
-from ..meshes import build_parts
 from ..schema import format_json
 from .axes import parse_axis
 from .measure import placement
@@ -83,6 +81,9 @@ def write_marker(m: UserModel, folder: Path) -> str | None:
     """Write ``m``'s mesh in the package's object frame at its size (the box the
     exporters fit it to) as ``folder/markers/<id>.stl``; its absolute path, or None when the
     mesh cannot be read any more (the markers fall back to a procedural model then)."""
+    import trimesh  # writing a marker only: reading a catalog does not need it
+
+    from ..meshes import build_parts
     try:
         parts = build_parts(m)
     except CatalogError:
