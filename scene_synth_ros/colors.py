@@ -26,7 +26,7 @@ UNKNOWN_COLOR = (0.6, 0.6, 0.6, 1.0)
 
 @lru_cache(maxsize=1)
 def _palette() -> tuple[tuple[float, float, float, float], ...]:
-    import matplotlib
+    import matplotlib  # the colour maps only: the node starts without matplotlib
     def colors(name):
         return [tuple(c) for c in matplotlib.colormaps[name].colors]
 
@@ -42,7 +42,7 @@ def _palette() -> tuple[tuple[float, float, float, float], ...]:
 @lru_cache(maxsize=1)
 def category_colors() -> dict[str, tuple[float, float, float, float]]:
     """The fixed RGBA colour of every category of ``categories.CATEGORIES``."""
-    import matplotlib
+    import matplotlib  # the colour maps only: the node starts without matplotlib
     # The categories beyond the paper's 52 go on through the palette's last entries, then
     # Dark2 and Set1 without its grey, none as pale as the floor; a data set's categories
     # keep hashing into the palette alone.
@@ -71,5 +71,5 @@ def category_color(category: str, vocabulary: Vocabulary = PAPER
 
 def rgba(color, alpha: float | None = None) -> tuple[float, float, float, float]:
     """``color`` (a name, ``#rrggbb`` or a tuple) as RGBA floats, with ``alpha`` if given."""
-    from matplotlib.colors import to_rgba
+    from matplotlib.colors import to_rgba  # as above
     return tuple(float(c) for c in to_rgba(color, alpha))

@@ -90,6 +90,14 @@ _PARTS = {'floor': (colors.FLOOR_COLOR, None), 'walls': (colors.WALL_COLOR, None
 def part_color(part: str) -> RGBA:
     """The RGBA of a room's ``part`` (``floor``, ``walls``, ``doors`` or ``windows``)."""
     return _floats(colors.rgba(*_PARTS[part]), 4, 'color')
+
+
+def warm_up() -> None:
+    """Read the colours now (importing matplotlib takes 0.3 s), so that the first room's
+    markers do not wait for them: the node does this beside its serving, once it serves."""
+    for part in _PARTS:
+        part_color(part)
+    colors.category_colors()
 LABEL_RGBA = (1.0, 1.0, 1.0, 1.0)
 
 

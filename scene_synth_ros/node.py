@@ -49,7 +49,7 @@ from visualization_msgs.msg import Marker, MarkerArray
 
 from .allocator import steady_allocator
 from .errors import SceneSynthError, sentence
-from .markers import scene_markers
+from .markers import scene_markers, warm_up
 from .ros_client import LATCHED, RELIABLE
 from .ros_messages import (
     layout_dict,
@@ -167,6 +167,8 @@ class SceneSynthNode(LifecycleNode):
         self._made: list = []                       # what configure creates
         self._held_layout: tuple | None = None      # the last layout while inactive
         self.finalized = threading.Event()          # shut down: the process may end
+        # what the first room's markers would wait for, read beside the serving, once
+        self._warming = threading.Thread(target=warm_up, name='scene_synth_warm_up')
         # Diagnostics in every state: a manager's operator sees an unconfigured node too.
         self.diag_pub = self.create_publisher(DiagnosticArray, '/diagnostics', RELIABLE)
         self.create_timer(1.0, self._publish_diagnostics,
@@ -222,6 +224,8 @@ class SceneSynthNode(LifecycleNode):
     def on_activate(self, state) -> TransitionCallbackReturn:
         done = super().on_activate(state)       # the lifecycle publishers
         self._active = True
+        if self._warming.ident is None:
+            self._warming.start()
         held, self._held_layout = self._held_layout, None
         if held is not None:
             self.server.submit_layout(*held)

@@ -22,6 +22,7 @@ from rcl_interfaces.msg import Parameter as ParameterMsg
 import rclpy
 from rclpy.action import ActionClient
 from rclpy.context import Context
+from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.parameter import Parameter
 from rclpy.parameter_client import AsyncParameterClient
@@ -87,8 +88,10 @@ class SceneSynthClient:
                                           self._keeper(topic), LATCHED)
         self.node.create_subscription(DiagnosticArray, '/diagnostics',
                                       self._keeper('diagnostics'), RELIABLE)
-        self._layout_pub = self.node.create_publisher(String, f'{self.target}/room_layout',
-                                                      LAYOUTS)
+        # The node's latched subscription cannot match it, by design: no warning of that.
+        self._layout_pub = self.node.create_publisher(
+            String, f'{self.target}/room_layout', LAYOUTS,
+            event_callbacks=PublisherEventCallbacks(incompatible_qos=lambda event: None))
         self._polygon_pub = self.node.create_publisher(
             PolygonStamped, f'{self.target}/room_polygon', RELIABLE)
         self._services = {k: self.node.create_client(Trigger, f'{self.target}/{k}')

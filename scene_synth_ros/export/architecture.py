@@ -80,7 +80,7 @@ def _box_mesh(box: WallBox) -> trimesh.Trimesh:
 def floor_slab(room: Room, thickness: float = FLOOR_THICKNESS) -> trimesh.Trimesh:
     """The floor outline extruded from z = -thickness to 0. Triangulated with shapely's
     constrained Delaunay triangulation (trimesh's own needs an optional engine)."""
-    import trimesh
+    import trimesh  # meshes only, as above
     pts = np.asarray(room.floor, dtype=float)          # counter-clockwise
     n = len(pts)
     tris = shapely.constrained_delaunay_triangles(room.polygon)

@@ -10,6 +10,7 @@ its ``modules`` and ``room_types`` sections).
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field, fields, is_dataclass, replace
+from importlib import metadata
 import json
 import math
 from pathlib import Path
@@ -314,9 +315,21 @@ def resolve_device(name: str):
 
 
 def device_name(name: str) -> str:
-    """``cpu`` or ``cuda`` for ``cpu | cuda | auto`` (``resolve_device``); the CPU is named
-    without importing torch."""
-    return name if name == 'cpu' else resolve_device(name).type
+    """``cpu`` or ``cuda`` for ``cpu | cuda | auto`` (``resolve_device``). ``cpu``, and
+    ``auto`` where the installed torch is a CPU-only build (which sees no CUDA device), are
+    named without importing torch (a second and a half)."""
+    if name == 'cpu' or (name == 'auto' and _cpu_only_torch()):
+        return 'cpu'
+    return resolve_device(name).type
+
+
+def _cpu_only_torch() -> bool:
+    """Whether the installed torch is a CPU-only build (its version says ``+cpu``), read
+    from its metadata."""
+    try:
+        return metadata.version('torch').endswith('+cpu')
+    except metadata.PackageNotFoundError:
+        return False
 
 
 # What runs synthesis's forward passes (``networks/runtime.py``).

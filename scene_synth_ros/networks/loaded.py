@@ -41,10 +41,10 @@ class LoadedNetworks:
         ``BundleError`` names a bad file."""
         rt = self.vocabulary.resolve(room_type)
         if rt not in self._bundles:
-            import torch
+            import torch  # a bundle read with torch: the cache misses it, or runtime torch
 
-            from .blocks import fold_batch_norms
-            from .bundle import load_bundle
+            from .blocks import fold_batch_norms  # torch, as above
+            from .bundle import load_bundle  # torch, as above
             runtime.set_threads(runtime.threads())    # what was asked of it before it loaded
             bundle = load_bundle(self._path(rt), self.device)
             for net in bundle.networks.values():
@@ -69,7 +69,7 @@ class LoadedNetworks:
         path = self._path(rt)
         record = read_record(path) if self.runtime == 'onnxruntime' else None
         if record is None:
-            from .bundle import served_record
+            from .bundle import served_record  # torch: the record is made from the bundle
             bundle = self.bundle(rt)
             try:
                 weights = file_hash(path)
@@ -82,7 +82,7 @@ class LoadedNetworks:
             calls = OnnxCalls(lambda: self.bundle(rt).networks, record.weights,
                               record.channels)
         else:
-            from .graphs import TorchCalls
+            from .graphs import TorchCalls  # torch: runtime torch
             calls = TorchCalls(self.bundle(rt).networks, self.device)
         self._served[rt], self._calls[rt] = record, calls
         return record
@@ -119,7 +119,7 @@ class LoadedNetworks:
                       np.zeros((1, record.latents[module]), dtype=np.float32))
         except Exception as e:   # whatever the exporter or onnxruntime raised
             if fall_back:
-                from .graphs import TorchCalls
+                from .graphs import TorchCalls  # torch: onnxruntime cannot run them
                 self._calls[record.room_type] = TorchCalls(
                     self.bundle(record.room_type).networks, self.device)
             return sentence(f'onnxruntime cannot run the {record.room_type} networks\' '

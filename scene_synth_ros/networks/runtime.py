@@ -170,7 +170,7 @@ class OnnxCalls:
         self._torch = None                          # ``TorchCalls`` for large batches
         self.loaded: list[str] = []     # the calls whose graphs came from the cache
         if channels is None:
-            from .graphs import image_channels
+            from .graphs import image_channels  # torch: read from the networks
             channels = image_channels(self.networks)
         # the channels of the images the networks take, and of those the graphs take
         self.channels = channels
@@ -194,7 +194,7 @@ class OnnxCalls:
                              f'{", ".join(MODULE_CALLS)}')
         if args[0].shape[0] > ONNX_MAX_BATCH:
             if self._torch is None:
-                from .graphs import TorchCalls
+                from .graphs import TorchCalls  # torch: a batch too large
                 self._torch = TorchCalls(self.networks, 'cpu', self.channels)
             return self._torch(module, *args)
         feed = [self._image(a) if a.ndim == 4 else np.asarray(a) for a in args]
@@ -231,7 +231,7 @@ class OnnxCalls:
             if self.weights is not None:
                 weights = self.weights
             else:
-                from .graphs import weights_hash
+                from .graphs import weights_hash  # torch: networks of no file
                 weights = weights_hash(self.networks, module)
             path = Path(self.cache_dir) / f'{module}-{graph_key(weights, module, feed)}.onnx'
             try:
@@ -243,7 +243,7 @@ class OnnxCalls:
                 with suppress(OSError):   # used: the last to be pruned (``keep``)
                     path.touch()
                 return session, names
-        from .graphs import export_graph
+        from .graphs import export_graph  # torch: a graph not in the cache
         graph = export_graph(self.networks, module, feed, names, self.image_channels)
         session = _session(graph, module)
         if path is not None:

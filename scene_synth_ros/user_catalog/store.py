@@ -83,7 +83,7 @@ def write_marker(m: UserModel, folder: Path) -> str | None:
     mesh cannot be read any more (the markers fall back to a procedural model then)."""
     import trimesh  # writing a marker only: reading a catalog does not need it
 
-    from ..meshes import build_parts
+    from ..meshes.registry import build_parts  # trimesh, as above
     try:
         parts = build_parts(m)
     except CatalogError:
