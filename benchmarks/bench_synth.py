@@ -100,10 +100,12 @@ def timing(rooms, weights, device='cpu', runtime='auto'):
     cpu = time.process_time() - cpu
     faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt - faults
     import torch
+
+    from scene_synth_ros.networks.runtime import threads
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f'\ncomplete bedrooms from empty, {rooms} rooms, {objects / rooms:.1f} objects each, '
           f'{os.cpu_count()} cores ({platform.processor() or platform.machine()}), '
-          f'torch {torch.__version__} with {torch.get_num_threads()} threads, '
+          f'torch {torch.__version__}, {threads()} threads, '
           f'networks on {synth.device} run by {synth.runtime}:')
     print(f'  median {statistics.median(seconds):.3f} s, mean {statistics.mean(seconds):.3f} s, '
           f'p90 {sorted(seconds)[int(0.9 * len(seconds))]:.3f} s, max {max(seconds):.3f} s '

@@ -526,7 +526,7 @@ ROOM_TYPE_ALIASES = {
 class Vocabulary:
     """The room types and categories one call knows: the package's (``ROOM_TYPES``), with
     the category sets of the data set a model was trained on (``specs``) in place of, or
-    beside, them. Weights carry theirs (``networks.bundle.weights_vocabulary``), a data set its
+    beside, them. Weights carry theirs (``networks.served.weights_vocabulary``), a data set its
     own (``dataset.yaml``); ``PAPER`` knows the package's tables alone (the paper's, and
     ``home_tables``' for the rooms of a home beyond it). The paper's table stays the
     description of the embedded corpus whatever a vocabulary defines.

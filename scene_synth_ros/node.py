@@ -20,6 +20,7 @@ import signal
 import sys
 import tempfile
 import threading
+import time
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from geometry_msgs.msg import Point, PolygonStamped, PoseArray
@@ -107,9 +108,9 @@ _FASTDDS_SETTINGS = ('FASTRTPS_DEFAULT_PROFILES_FILE', 'FASTDDS_DEFAULT_PROFILES
 # layout published before the node was up still arrives. A second subscription, volatile,
 # hears the publishers that are (`ros2 topic pub` by default), which a transient-local one
 # would not match; a layout from a transient-local publisher arrives on both, once here.
-# Known limit: two layouts a transient-local publisher sends in quick succession may be
-# served out of order (the latched subscription, depth 1, can hand over the newer before the
-# volatile one hands over the older); docs/node.md says so.
+# Of two layouts such a publisher sends in quick succession, the latched subscription
+# (depth 1) can hand over the newer before the volatile one hands over the older: an older
+# layout is dropped by its source stamp (``LAYOUT_ORDER_WINDOW``).
 LATCHED_INPUT = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                            durability=DurabilityPolicy.TRANSIENT_LOCAL)
 # What a user may set for the room topics and ~/room_polygon at start-up, as parameters
@@ -118,6 +119,10 @@ OVERRIDABLE = QoSOverridingOptions([QoSPolicyKind.DEPTH, QoSPolicyKind.DURABILIT
                                     QoSPolicyKind.HISTORY, QoSPolicyKind.RELIABILITY])
 # Layouts remembered to drop the second copy by: a handful in flight at most.
 SEEN_LAYOUTS = 64
+# Seconds after taking a layout in which one stamped earlier by its publisher (its source
+# timestamp) is an older layout overtaken on the other subscription, and dropped. Short, so
+# that a publisher on a host whose clock lags is only refused right after another's layout.
+LAYOUT_ORDER_WINDOW = 2.0
 # The typed services, each with the request of ``server.REQUESTS`` it runs.
 TYPED_SERVICES = {'insert_object': (InsertObject, 'next_object'),
                   'suggest_objects': (SuggestObjects, 'suggest'),
@@ -194,6 +199,7 @@ class SceneSynthNode(LifecycleNode):
         self.scene_pub = self.create_lifecycle_publisher(
             String, '~/scene', _own(LATCHED), qos_overriding_options=OVERRIDABLE)
         self._seen_layouts: deque = deque(maxlen=SEEN_LAYOUTS)
+        self._newest_layout: tuple[int, float] | None = None   # (source stamp, taken at)
         made = [self.create_subscription(String, '~/room_layout', self._on_layout, RELIABLE,
                                          callback_group=inputs),
                 # a volatile publisher cannot match it, by design: no warning of that
@@ -289,10 +295,18 @@ class SceneSynthNode(LifecycleNode):
 
     # ---- inputs ---------------------------------------------------------------------------
     def _on_layout(self, msg: String, info) -> None:
-        key = (info.get('source_timestamp'), info.get('publication_sequence_number'))
+        stamp = info.get('source_timestamp')
+        key = (stamp, info.get('publication_sequence_number'))
         if key in self._seen_layouts:
             return
         self._seen_layouts.append(key)
+        if stamp is not None:
+            now = time.monotonic()
+            newest = self._newest_layout
+            if newest is not None and stamp < newest[0] and now - newest[1] < LAYOUT_ORDER_WINDOW:
+                self.get_logger().debug('an older layout arrived after a newer one: dropped')
+                return
+            self._newest_layout = (stamp, now)
         if not self._active:        # kept for activation: a simulator latched it at start-up
             self._held_layout = (msg.data, 'room_layout')
             return

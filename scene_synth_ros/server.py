@@ -342,8 +342,9 @@ class SceneServer:
     ``publish(served)`` is called from the worker thread with every complete room;
     ``on_status(status)`` whenever the status changes; ``on_seed(seed)`` whenever the seed
     the next request will use changes (not when ``reconfigure`` sets it). Construction
-    loads and checks every room type's weights and raises ``BundleError`` (naming the file)
-    or ``ConfigError``.
+    reads and checks every room type's weights, readies the calls of ``room_type`` (the
+    others' at their first room) and raises ``BundleError`` (naming the file) or
+    ``ConfigError``.
     """
 
     def __init__(self, config: ServerConfig, publish: Callable[[Served], None],

@@ -44,7 +44,7 @@ from dataclasses import dataclass, field, replace
 import math
 from pathlib import Path
 import time
-from typing import Callable, Collection, Iterator
+from typing import TYPE_CHECKING, Callable, Collection, Iterator
 
 import numpy as np
 import shapely
@@ -91,6 +91,9 @@ from .scene import PlacedObject, Room, Scene, box_corners, wrap_angle
 from .synth_config import SynthConfig
 from .thresholds import FLOOR_TOLERANCE, MIN_SUPPORT
 from .user_catalog import load_catalog
+
+if TYPE_CHECKING:
+    from .networks.graphs import TorchCalls  # torch: an annotation only
 
 # What ``Synthesis.timings`` counts seconds of (see the module docstring).
 MODULES = ('render', 'category', 'location', 'orientation', 'dimensions', 'insertion')
@@ -197,7 +200,7 @@ class _Context:
     room: Room
     spec: RoomTypeSpec
     bundle: Served                # what synthesis reads of the room type's bundle
-    calls: dict | OnnxCalls       # the bundle's networks as ``lockstep.ask`` runs them
+    calls: OnnxCalls | TorchCalls  # the bundle's networks as ``lockstep.ask`` runs them
     frame: Frame                  # the room's frame: what the category and location modules see
     grid: Frame                   # the location module's output grid
     floor_mask: np.ndarray        # (L, L) bool: pixel centres on the floor
@@ -276,6 +279,7 @@ class Synthesizer:
         self.vocabulary = weights_vocabulary(self.weights_dir, specs)
         self.networks = LoadedNetworks(self.weights_dir, self.device, self.runtime,
                                        self.vocabulary)
+        self._ready: set[str] = set()       # the room types ``prepare`` readied
 
     # ---- set-up ---------------------------------------------------------------------------
     def bundle(self, room_type: str):
@@ -284,8 +288,12 @@ class Synthesizer:
         return self.networks.bundle(room_type)
 
     def calls(self, room_type: str):
-        """The networks of ``room_type`` as synthesis runs them (``LoadedNetworks.calls``)."""
-        return self.networks.calls(room_type)
+        """The networks of ``room_type`` as synthesis runs them (``LoadedNetworks.calls``),
+        readied (``prepare``) at the room type's first use."""
+        rt = self.vocabulary.resolve(room_type)
+        if rt not in self._ready:
+            self.prepare(rt)
+        return self.networks.calls(rt)
 
     def load_all(self, ready: Collection[str] | None = None) -> None:
         """Read the bundle of every room type of the weights directory (its record, from the
@@ -302,13 +310,14 @@ class Synthesizer:
                 self.networks.served(rt)
 
     def prepare(self, room_type: str) -> None:
-        """Load ``room_type``'s bundle and ready its calls (``LoadedNetworks.prepare``).
-        Networks onnxruntime cannot run are torch's under runtime ``auto``; asked for by name,
-        that is a SynthesisError."""
+        """Ready ``room_type``'s calls (``LoadedNetworks.prepare``: its record, its graphs in
+        sessions, or its bundle with torch). Networks onnxruntime cannot run are torch's
+        under runtime ``auto``; asked for by name, that is a SynthesisError."""
         named = self.config.runtime == 'onnxruntime'
         why = self.networks.prepare(room_type, fall_back=not named)
         if why is not None and named:
             raise SynthesisError(why)
+        self._ready.add(self.vocabulary.resolve(room_type))
 
     def _renderer(self, resolution: int) -> TopDownRenderer:
         if resolution not in self._renderers:

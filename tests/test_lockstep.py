@@ -10,6 +10,7 @@ from scene_synth_ros.categories import room_spec
 from scene_synth_ros.corpus import HELDOUT_SEED
 from scene_synth_ros.corpus.generate import empty_room
 from scene_synth_ros.geometry import check_scene
+from scene_synth_ros.networks import runtime
 from scene_synth_ros.networks.runtime import padded_channels
 from scene_synth_ros.render import FIRST_CATEGORY
 from scene_synth_ros.scene import Room
@@ -19,8 +20,9 @@ from scene_synth_ros.synth import SynthConfig, SynthesisError, Synthesizer
 @pytest.fixture(scope='module')
 def synth():
     threads = torch.get_num_threads()
-    torch.set_num_threads(1)            # as a batch worker runs
+    runtime.set_threads(1)              # as a batch worker runs: torch and onnxruntime
     yield Synthesizer()
+    runtime.set_threads(None)
     torch.set_num_threads(threads)
 
 

@@ -38,8 +38,10 @@ from scene_synth_ros.synth import SynthConfig, SynthesisError, Synthesizer
 @pytest.fixture(scope='module')
 def one_thread():
     threads = torch.get_num_threads()
-    torch.set_num_threads(1)            # as a batch worker runs
+    runtime.set_threads(1)              # as a batch worker runs: torch and onnxruntime
+    assert torch.get_num_threads() == runtime.threads() == 1
     yield
+    runtime.set_threads(None)
     torch.set_num_threads(threads)
 
 
@@ -71,7 +73,8 @@ def test_onnxruntime_answers_every_call_as_torch_does(synth, tiny_weights, weigh
     s = synth if weights == 'shipped' else Synthesizer(
         tiny_weights, SynthConfig(runtime='onnxruntime'))
     for room_type in ('bedroom', 'bathroom'):
-        calls, nets = s.calls(room_type), s.bundle(room_type).networks
+        # The calls before ``prepare`` (which a synthesizer runs at a room type's first use).
+        calls, nets = s.networks.calls(room_type), s.bundle(room_type).networks
         assert isinstance(calls, OnnxCalls) and calls.exported == ()
         # The first call exports at a batch of three; the others run the same graph.
         for batch, channels_last in [(3, True), (1, True), (2, False), (1, False)]:
@@ -191,17 +194,22 @@ def test_graphs_are_kept_on_disk_and_read_back_without_an_export(synth, tmp_path
     small = tmp_path / 'small'
     small.mkdir()
     for k in (1, 2):
-        (small / f'stale-{k}.onnx').write_bytes(b'old')
-        os.utime(small / f'stale-{k}.onnx', (1000 * k, 1000 * k))
+        (small / f'category-stale{k}.onnx').write_bytes(b'old')
+        os.utime(small / f'category-stale{k}.onnx', (1000 * k, 1000 * k))
+    # Files of others in the directory are not the cache's to prune.
+    (small / 'theirs.onnx').write_bytes(b'not ours')
+    os.utime(small / 'theirs.onnx', (1, 1))
     OnnxCalls(nets, cache_dir=small)('dimensions', *args[3][1])
     dims = next(small.glob('dimensions-*.onnx'))
-    assert sorted(p.name for p in small.glob('*.onnx')) == sorted([dims.name, 'stale-2.onnx'])
+    assert sorted(p.name for p in small.glob('*.onnx')) == sorted(
+        [dims.name, 'category-stale2.onnx', 'theirs.onnx'])
     os.utime(dims, (500, 500))
     reader = OnnxCalls(nets, cache_dir=small)
     reader('dimensions', *args[3][1])
     reader('category', *args[0][1])
     assert reader.loaded == ['dimensions']
-    assert {p.name.split('-')[0] for p in small.glob('*.onnx')} == {'dimensions', 'category'}
+    assert {p.name.split('-')[0] for p in small.glob('*.onnx')} == \
+        {'dimensions', 'category', 'theirs.onnx'}
 
 
 def test_a_graph_is_named_by_the_weights_and_the_inputs(synth):
@@ -299,9 +307,9 @@ def test_images_drawn_with_zero_channels_are_taken_as_they_are(synth):
 
 
 def test_loading_every_bundle_readies_every_call(tiny_weights, one_thread):
-    # The node and the evaluation load every bundle before their first room: in onnxruntime
-    # that also exports (or reads back) each call's graph, so no room pays for it, and it
-    # changes no room.
+    # The evaluation readies every bundle before its first room (the node its room type's):
+    # in onnxruntime that also exports (or reads back) each call's graph, so no room pays
+    # for it, and it changes no room.
     ready = Synthesizer(tiny_weights, SynthConfig(runtime='onnxruntime'))
     ready.load_all()
     for room_type in ready.room_types:
@@ -337,3 +345,53 @@ def test_networks_onnxruntime_cannot_run_are_torchs_under_auto(tiny_weights, mon
     assert "networks' category call (RuntimeError: unsupported operator" in message
     assert message.endswith('runtime torch runs them')
     assert len(message) < 300 and '\n' not in message
+
+
+def test_weights_replaced_while_in_use_are_refused_not_cached_under_the_old_name(
+        tmp_path, monkeypatch):
+    from scene_synth_ros.networks.served import BundleError, keep_record
+    from scene_synth_ros.paths import weights_dir
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path / 'cache'))
+    weights = tmp_path / 'weights'
+    weights.mkdir()
+    for rt in ('bedroom', 'bathroom'):
+        (weights / f'{rt}.pt').write_bytes((weights_dir() / f'{rt}.pt').read_bytes())
+    s = Synthesizer(weights, SynthConfig(runtime='onnxruntime'))
+    s.networks.served('bedroom')            # its record; its graphs not exported yet
+    # Other weights copied over the file: the graphs are not exported from them under the
+    # name of the weights the record was made of, whatever was loaded meanwhile.
+    (weights / 'bedroom.pt').write_bytes((weights_dir() / 'office.pt').read_bytes())
+    with pytest.raises(BundleError, match='bedroom.pt: the file changed while it was in use'):
+        s.calls('bedroom')
+    assert not list((tmp_path / 'cache').glob('*.onnx'))
+    # A record of networks that take other images than this code draws is refused, not
+    # served: one sentence naming the file.
+    fresh = Synthesizer(weights, SynthConfig(runtime='onnxruntime'))
+    record = fresh.networks.served('bathroom')
+    record.channels += 1
+    keep_record(record)
+    with pytest.raises(BundleError, match=r'bathroom.pt: weights do not match the networks '
+                                          r'of this version \(they take images of'):
+        Synthesizer(weights, SynthConfig(runtime='onnxruntime')).networks.served('bathroom')
+
+
+def test_the_threads_asked_for_reach_onnxruntime_and_torch(monkeypatch):
+    threads = torch.get_num_threads()
+    try:
+        runtime.set_threads(1)
+        assert runtime.threads() == torch.get_num_threads() == 1
+        runtime.set_threads(None)
+        # Nothing asked for: torch's count where torch is loaded (it is, here).
+        torch.set_num_threads(2)
+        assert runtime.threads() == 2
+    finally:
+        runtime.set_threads(None)
+        torch.set_num_threads(threads)
+    # Without torch: OMP_NUM_THREADS where it is set, else the CPUs the process may use.
+    code = ('import sys; from scene_synth_ros.networks import runtime; '
+            'print(runtime.threads(), "torch" in sys.modules)')
+    for omp, want in (('1', '1'), ('', str(len(os.sched_getaffinity(0))))):
+        env = dict(os.environ, OMP_NUM_THREADS=omp)
+        out = subprocess.run([sys.executable, '-c', code], env=env, text=True,
+                             capture_output=True, check=True).stdout.split()
+        assert out == [want, 'False']

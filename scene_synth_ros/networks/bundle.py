@@ -75,17 +75,6 @@ class Bundle:
     allowance: Allowance = STRICT
 
     @cached_property
-    def model_index(self) -> dict[str, int]:
-        """The index of each of ``models`` (its row and column of ``cooccurrence``)."""
-        return {m: k for k, m in enumerate(self.models)}
-
-    @cached_property
-    def model_rooms(self) -> torch.Tensor:
-        """How many training rooms hold each model (the diagonal of ``cooccurrence``), at
-        least 1 so that it can divide."""
-        return self.cooccurrence.diagonal().clamp_min(1.0)
-
-    @cached_property
     def vocabulary(self) -> Vocabulary:
         """What these networks know: the paper's table, with the data set's category set
         of their room type when they were trained on one."""

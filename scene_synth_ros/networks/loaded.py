@@ -18,7 +18,7 @@ import numpy as np
 
 from ..categories import Vocabulary
 from ..errors import sentence
-from ..render import FIRST_CATEGORY
+from ..render import FIRST_CATEGORY, num_channels
 from . import runtime
 from .runtime import OnnxCalls
 from .served import BundleError, Served, bundle_path, file_hash, keep_record, read_record
@@ -45,7 +45,7 @@ class LoadedNetworks:
 
             from .blocks import fold_batch_norms  # torch, as above
             from .bundle import load_bundle  # torch, as above
-            runtime.set_threads(runtime.threads())    # what was asked of it before it loaded
+            runtime.torch_loaded()      # the threads asked for before torch was loaded
             bundle = load_bundle(self._path(rt), self.device)
             for net in bundle.networks.values():
                 fold_batch_norms(net)
@@ -70,22 +70,44 @@ class LoadedNetworks:
         record = read_record(path) if self.runtime == 'onnxruntime' else None
         if record is None:
             from .bundle import served_record  # torch: the record is made from the bundle
+            weights = self._hash(path)
             bundle = self.bundle(rt)
-            try:
-                weights = file_hash(path)
-            except OSError as e:
-                raise BundleError(f'{path}: cannot be read ({e.strerror})') from None
+            self._unchanged(path, weights)      # what was loaded is what was hashed
             record = served_record(bundle, weights)
             if self.runtime == 'onnxruntime':
                 keep_record(record)
+        want = num_channels(rt, self.vocabulary)
+        if record.channels != want:
+            raise BundleError(f'{path}: weights do not match the networks of this version (they '
+                              f'take images of {record.channels} channels, this code draws '
+                              f'{want})')
         if self.runtime == 'onnxruntime':
-            calls = OnnxCalls(lambda: self.bundle(rt).networks, record.weights,
-                              record.channels)
+            calls = OnnxCalls(lambda: self._networks_of(rt, path, record.weights),
+                              record.weights, record.channels)
         else:
             from .graphs import TorchCalls  # torch: runtime torch
-            calls = TorchCalls(self.bundle(rt).networks, self.device)
+            calls = TorchCalls(self.bundle(rt).networks, self.device, record.channels)
         self._served[rt], self._calls[rt] = record, calls
         return record
+
+    def _networks_of(self, rt: str, path: Path, weights: str) -> dict:
+        """The torch networks of ``rt`` for its calls, whose graphs and record name the file's
+        ``weights``: a file replaced since is refused, not exported under the old name."""
+        networks = self.bundle(rt).networks
+        self._unchanged(path, weights)
+        return networks
+
+    @staticmethod
+    def _hash(path: Path) -> str:
+        try:
+            return file_hash(path)
+        except OSError as e:
+            raise BundleError(f'{path}: cannot be read ({e.strerror})') from None
+
+    def _unchanged(self, path: Path, weights: str) -> None:
+        if self._hash(path) != weights:
+            raise BundleError(f'{path}: the file changed while it was in use; start again to '
+                              f'use the new weights')
 
     def calls(self, room_type: str):
         """The networks of ``room_type`` as synthesis calls them (``runtime``): an
@@ -117,11 +139,13 @@ class LoadedNetworks:
             for module in ('orientation', 'dimensions'):
                 calls(module, image, cats,
                       np.zeros((1, record.latents[module]), dtype=np.float32))
+        except BundleError:
+            raise                # the weights, not onnxruntime: no runtime can run them
         except Exception as e:   # whatever the exporter or onnxruntime raised
             if fall_back:
                 from .graphs import TorchCalls  # torch: onnxruntime cannot run them
                 self._calls[record.room_type] = TorchCalls(
-                    self.bundle(record.room_type).networks, self.device)
+                    self.bundle(record.room_type).networks, self.device, record.channels)
             return sentence(f'onnxruntime cannot run the {record.room_type} networks\' '
                             f'{module} call ({type(e).__name__}: {sentence(e, 160)}); runtime '
                             f'torch runs them')

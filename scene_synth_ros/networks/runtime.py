@@ -74,27 +74,42 @@ CACHE_ENV = 'SCENE_SYNTH_ROS_CACHE'
 # calls at four larger sizes of room each, twice over (about 400 MB).
 CACHE_GRAPHS = 128
 
-# The CPU threads the networks may use (``set_threads``); None: torch's count where torch
-# is loaded, else the CPU count.
+# The CPU threads the networks may use (``set_threads``); None: as ``threads`` says.
 _threads: int | None = None
 
 
-def set_threads(n: int) -> None:
+def set_threads(n: int | None) -> None:
     """Let the networks use ``n`` CPU threads: onnxruntime sessions made from now on, and
-    torch, now if it is loaded, else when ``LoadedNetworks`` loads it."""
+    torch, now if it is loaded, else when ``LoadedNetworks`` loads it (``torch_loaded``).
+    None: as ``threads`` says when nothing was set."""
     global _threads
-    _threads = int(n)
+    _threads = None if n is None else int(n)
+    torch_loaded()
+
+
+def torch_loaded() -> None:
+    """Give torch, if it is loaded, the threads ``set_threads`` asked for (if it did)."""
     torch = sys.modules.get('torch')
-    if torch is not None:
+    if torch is not None and _threads is not None:
         torch.set_num_threads(_threads)
 
 
 def threads() -> int:
-    """The CPU threads the networks may use (``set_threads``)."""
+    """The CPU threads the networks may use: those ``set_threads`` asked for; else torch's
+    count where torch is loaded; else ``OMP_NUM_THREADS`` where it is set, else the CPUs
+    this process may run on (as torch would have counted them)."""
     if _threads is not None:
         return _threads
     torch = sys.modules.get('torch')
-    return torch.get_num_threads() if torch is not None else os.cpu_count() or 1
+    if torch is not None:
+        return torch.get_num_threads()
+    with suppress(ValueError):
+        if int(os.environ.get('OMP_NUM_THREADS', '')) > 0:
+            return int(os.environ['OMP_NUM_THREADS'])
+    try:
+        return len(os.sched_getaffinity(0)) or 1
+    except AttributeError:          # not on Linux
+        return os.cpu_count() or 1
 
 
 def graph_cache_dir() -> Path | None:
@@ -130,9 +145,8 @@ def _torch_version() -> str:
     """torch's version as installed, read without importing it (a second)."""
     try:
         return metadata.version('torch')
-    except metadata.PackageNotFoundError:
-        torch = sys.modules.get('torch')
-        return getattr(torch, '__version__', 'none')
+    except metadata.PackageNotFoundError:   # no graph can be exported then
+        return 'none'
 
 
 def graph_key(weights: str, module: str, feed: Sequence[np.ndarray]) -> str:
@@ -247,7 +261,7 @@ class OnnxCalls:
         graph = export_graph(self.networks, module, feed, names, self.image_channels)
         session = _session(graph, module)
         if path is not None:
-            keep(path, graph)
+            keep(path, graph, CACHE_GRAPHS, tuple(f'{m}-' for m in MODULE_CALLS))
         return session, names
 
 
@@ -279,17 +293,17 @@ def _session(graph: bytes, module: str):
                                         disabled_optimizers=disabled)
 
 
-def keep(path: Path, data: bytes, limit: int | None = None) -> None:
+def keep(path: Path, data: bytes, limit: int, kinds: tuple[str, ...]) -> None:
     """Write ``data`` to the cache whole or not at all; a cache that cannot be written
-    (read-only, full) only costs the next process an export. Of the files of ``path``'s
-    suffix there, the least recently used beyond ``limit`` (``CACHE_GRAPHS``) go."""
+    (read-only, full) only costs the next process an export. Of the files there of ``path``'s
+    suffix whose names start with one of ``kinds`` (this package's: other files in a shared
+    directory stay), the least recently used beyond ``limit`` go."""
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         write_atomic(path, data)     # processes writing the same file: the last one stays
         # Those of weights or code replaced since go first: reading one back marks it used.
-        kept = sorted(path.parent.glob(f'*{path.suffix}'), key=lambda p: p.stat().st_mtime,
-                      reverse=True)
-        for old in kept[CACHE_GRAPHS if limit is None else limit:]:
+        ours = [p for p in path.parent.glob(f'*{path.suffix}') if p.name.startswith(kinds)]
+        for old in sorted(ours, key=lambda p: p.stat().st_mtime, reverse=True)[limit:]:
             old.unlink(missing_ok=True)
     except OSError:
         pass

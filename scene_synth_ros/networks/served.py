@@ -6,11 +6,12 @@ configuration, category set, allowance, model co-occurrence, the CVAEs' latent s
 the dimensions module's learned spread); with the bundle's graphs in the cache
 (``runtime.OnnxCalls``), it lets a process furnish rooms without importing torch. Records
 are kept beside the graphs, named by a hash of the bundle file's bytes and the code, and
-written the first time a bundle is loaded with torch; like the graphs they are only ever a
-saving: one that cannot be read is made again from the bundle.
+written the first time a process running onnxruntime loads the bundle with torch; like the
+graphs they are only ever a saving: one that cannot be read is made again from the bundle.
 """
 from __future__ import annotations
 
+from contextlib import suppress
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
 import hashlib
@@ -137,9 +138,10 @@ def read_record(path: Path) -> Served | None:
         if where is None:
             return None
         record = Served.from_bytes(where.read_bytes())
-        where.touch()
     except Exception:   # not there, unreadable, or of a format gone: made again
         return None
+    with suppress(OSError):     # used: the last to be pruned (a read-only cache still serves)
+        where.touch()
     return record
 
 
@@ -147,7 +149,7 @@ def keep_record(record: Served) -> None:
     """Keep ``record`` in the cache (nothing where there is none, or it cannot be written)."""
     where = _cached(record.weights, 'bundle', '.npz')
     if where is not None:
-        keep(where, record.to_bytes(), CACHE_RECORDS)
+        keep(where, record.to_bytes(), CACHE_RECORDS, ('bundle-',))
 
 
 def _room_type_of(path: Path) -> tuple[str, RoomTypeSpec | None]:
@@ -167,7 +169,7 @@ def _room_type_of(path: Path) -> tuple[str, RoomTypeSpec | None]:
     room_type, spec = _stored_spec(path)
     if where is not None:
         note = {'room_type': room_type, 'spec': None if spec is None else spec.to_dict()}
-        keep(where, json.dumps(note).encode(), CACHE_RECORDS)
+        keep(where, json.dumps(note).encode(), CACHE_RECORDS, ('spec-',))
     return room_type, spec
 
 
