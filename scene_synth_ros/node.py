@@ -148,6 +148,31 @@ def _descriptor(name: str) -> ParameterDescriptor:
     return d
 
 
+class LayoutOrder:
+    """Which layouts arriving on ``~/room_layout``'s two subscriptions are taken: a copy of
+    one already taken (the same source stamp and sequence number) is not, nor one stamped
+    by its publisher before the newest one taken, within ``window`` seconds of that (an
+    older layout overtaken on the other subscription)."""
+
+    def __init__(self, seen: int = SEEN_LAYOUTS, window: float = LAYOUT_ORDER_WINDOW):
+        self._seen: deque = deque(maxlen=seen)
+        self._newest: tuple[int, float] | None = None     # (source stamp, taken at)
+        self.window = window
+
+    def admit(self, stamp: int | None, sequence: int | None, now: float) -> bool:
+        key = (stamp, sequence)
+        if key in self._seen:
+            return False
+        self._seen.append(key)
+        if stamp is None:
+            return True
+        if self._newest is not None and stamp < self._newest[0] \
+                and now - self._newest[1] < self.window:
+            return False
+        self._newest = (stamp, now)
+        return True
+
+
 class SceneSynthNode(LifecycleNode):
     def __init__(self, **kwargs):
         super().__init__(NODE_NAME, **kwargs)
@@ -198,8 +223,7 @@ class SceneSynthNode(LifecycleNode):
             PoseArray, '~/poses', _own(LATCHED), qos_overriding_options=OVERRIDABLE)
         self.scene_pub = self.create_lifecycle_publisher(
             String, '~/scene', _own(LATCHED), qos_overriding_options=OVERRIDABLE)
-        self._seen_layouts: deque = deque(maxlen=SEEN_LAYOUTS)
-        self._newest_layout: tuple[int, float] | None = None   # (source stamp, taken at)
+        self._layouts = LayoutOrder()
         made = [self.create_subscription(String, '~/room_layout', self._on_layout, RELIABLE,
                                          callback_group=inputs),
                 # a volatile publisher cannot match it, by design: no warning of that
@@ -295,18 +319,9 @@ class SceneSynthNode(LifecycleNode):
 
     # ---- inputs ---------------------------------------------------------------------------
     def _on_layout(self, msg: String, info) -> None:
-        stamp = info.get('source_timestamp')
-        key = (stamp, info.get('publication_sequence_number'))
-        if key in self._seen_layouts:
+        if not self._layouts.admit(info.get('source_timestamp'),
+                                   info.get('publication_sequence_number'), time.monotonic()):
             return
-        self._seen_layouts.append(key)
-        if stamp is not None:
-            now = time.monotonic()
-            newest = self._newest_layout
-            if newest is not None and stamp < newest[0] and now - newest[1] < LAYOUT_ORDER_WINDOW:
-                self.get_logger().debug('an older layout arrived after a newer one: dropped')
-                return
-            self._newest_layout = (stamp, now)
         if not self._active:        # kept for activation: a simulator latched it at start-up
             self._held_layout = (msg.data, 'room_layout')
             return

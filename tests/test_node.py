@@ -364,6 +364,52 @@ def test_a_new_layout_supersedes_the_one_being_furnished(node):
     assert int(diag['requests superseded']) >= superseded + len(layouts) + 1 - published
 
 
+def test_a_layout_is_taken_once_and_an_overtaken_older_one_not_at_all():
+    from scene_synth_ros.node import LayoutOrder
+    order = LayoutOrder(window=2.0)
+    assert order.admit(100, 1, now=10.0)
+    assert not order.admit(100, 1, now=10.1)         # its copy on the other subscription
+    assert order.admit(300, 3, now=10.2)             # the newer one, first on the latched one
+    assert not order.admit(200, 2, now=10.3)         # the older one, overtaken: dropped
+    assert not order.admit(300, 3, now=10.4)
+    # Beyond the window an earlier stamp is another publisher's clock, not an old layout.
+    assert order.admit(250, 1, now=12.5)
+    assert order.admit(None, None, now=12.6) and order.admit(None, 7, now=12.6)
+
+
+def test_layouts_a_transient_local_publisher_sends_in_a_row_end_with_the_newest(node):
+    # A simulator that latches its layouts reaches both of the node's subscriptions: each
+    # layout is furnished once at most, and the room served last is the newest (the order
+    # that the two subscriptions deliver in is the middleware's: LayoutOrder, above, is
+    # what drops an older layout overtaken on the other one).
+    from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+    from std_msgs.msg import String
+    client = node.client
+    latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                         durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    pub = client.node.create_publisher(String, f'{client.target}/room_layout', latched)
+    try:
+        client.spin_until(lambda: pub.get_subscription_count() >= 2, 10.0, 'both subscriptions')
+        n = client.count('scene')
+        for k in range(6):
+            d = json.loads(LAYOUT)
+            d['floor'] = [[x + k, y] for x, y in d['floor']]
+            for op in d['doors'] + d['windows']:
+                op['position'][0] += k
+            d['request_id'] = f'latched-{k}'
+            pub.publish(String(data=json.dumps(d)))
+        client.wait_scene(n, request_id='latched-5')
+        until = time.monotonic() + 2.0
+        client.spin_until(lambda: time.monotonic() > until, 3.0, 'two seconds')
+        assert json.loads(client.latest('scene').data)['meta']['request_id'] == 'latched-5'
+        served = [json.loads(m.data)['meta'].get('request_id')
+                  for seq, _, m in client.received['scene'] if seq > n]
+        assert served.count('latched-5') == 1       # each layout once, the newest last
+    finally:
+        client.node.destroy_publisher(pub)
+        client.call('reset')
+
+
 def test_parameters_rclpy_owns_pass_through_and_a_dump_loads_back(node):
     client = node.client
     assert client.set_parameters({'use_sim_time': True}) == []
