@@ -35,12 +35,17 @@ def door_zone(room: Room, door: Opening, allowance: Allowance = STRICT) -> Polyg
     wall = room.wall_of(door)
     if wall is None:
         raise ValueError(f'the door at {door.position} is not on a wall of the room')
-    depth = max(DOOR_ZONE_MIN_DEPTH, door.width + 0.1)
+    depth = door_zone_depth(door)
     if allowance.door_depth is not None:
         depth = max(min(depth, allowance.door_depth), DOOR_ZONE_LEAST_DEPTH)
     half = door.width / 2 + DOOR_ZONE_SIDE_MARGIN
     centre = np.asarray(door.position) + wall.normal * depth / 2
     return Polygon(box_corners(centre[0], centre[1], wall.inward_yaw, 2 * half, depth))
+
+
+def door_zone_depth(door: Opening) -> float:
+    """How deep the strict clear zone inside ``door`` reaches into the room."""
+    return max(DOOR_ZONE_MIN_DEPTH, door.width + 0.1)
 
 
 def door_entry_point(room: Room, door: Opening, robot_width: float = ROBOT_WIDTH) -> Point:
@@ -86,23 +91,33 @@ def collisions(scene: Scene, tol: float = COLLISION_TOLERANCE,
                allowance: Allowance = STRICT) -> list[tuple[str, str]]:
     """Pairs of first-tier objects that interpenetrate by more than ``tol``, at heights that
     overlap, except pairs the ``allowance`` lets one tuck under the other that far."""
-    objs = scene.first_tier
-    shrunk = [o.footprint(tol / 2) for o in objs]
-    if len(shrunk) < 2:
+    return sorted({(a.id, b.id) for a, b in overlapping(scene.first_tier, tol)
+                   if not _tucked(a, b, tol, allowance)})
+
+
+def overlapping(objs: list[PlacedObject], tol: float = COLLISION_TOLERANCE
+                ) -> list[tuple[PlacedObject, PlacedObject]]:
+    """The pairs of ``objs`` (in their order) whose footprints interpenetrate by more than
+    ``tol`` at heights that overlap by more than ``tol``."""
+    if len(objs) < 2:
         return []
-    tree = shapely.STRtree(shrunk)
-    a, b = tree.query(shrunk, predicate='intersects')
-    return sorted({(objs[i].id, objs[j].id) for i, j in zip(a, b, strict=True)
-                   if i < j and _counts(objs[i], objs[j], tol, allowance)})
+    shrunk = [o.footprint(tol / 2) for o in objs]
+    a, b = shapely.STRtree(shrunk).query(shrunk, predicate='intersects')
+    return [(objs[i], objs[j]) for i, j in zip(a, b, strict=True)
+            if i < j and heights_overlap(objs[i], objs[j], tol)]
 
 
 def _counts(a: PlacedObject, b: PlacedObject, tol: float, allowance: Allowance) -> bool:
     """Whether two footprints found to interpenetrate are a collision: their heights overlap
     and the ``allowance`` does not let one tuck under the other that far."""
-    if not heights_overlap(a, b, tol):
-        return False
+    return heights_overlap(a, b, tol) and not _tucked(a, b, tol, allowance)
+
+
+def _tucked(a: PlacedObject, b: PlacedObject, tol: float, allowance: Allowance) -> bool:
+    """Whether the ``allowance`` lets one of two overlapping footprints tuck under the other
+    as far as they overlap."""
     allowed = allowance.tuck_depth(a.category, b.category)
-    return not (allowed and overlap_depth(a, b) <= allowed + tol)
+    return bool(allowed) and overlap_depth(a, b) <= allowed + tol
 
 
 def off_floor(scene: Scene, tol: float = FLOOR_TOLERANCE) -> list[str]:

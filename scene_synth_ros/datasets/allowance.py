@@ -26,13 +26,18 @@ from dataclasses import dataclass
 from typing import Iterable
 
 import numpy as np
-import shapely
 from shapely.geometry import LineString
 
 from ..allowance import Allowance
-from ..geometry import door_zone, enters_zone, heights_overlap, overlap_depth, raised
+from ..geometry import (
+    door_zone,
+    door_zone_depth,
+    enters_zone,
+    overlap_depth,
+    overlapping,
+    raised,
+)
 from ..scene import Scene
-from ..thresholds import COLLISION_TOLERANCE
 
 ON_TOP = 0.01    # metres: a base this close to its parent's top is on it (``geometry.rests_on``)
 
@@ -73,7 +78,7 @@ class Deriver:
         for door in room.doors:
             zone = door_zone(room, door)
             wall = room.wall_of(door)
-            strict = float(np.ptp(np.asarray(zone.exterior.coords) @ wall.normal))
+            strict = door_zone_depth(door)
             ends = [np.asarray(door.position) + s * wall.direction * door.width / 2
                     for s in (-1, 1)]
             opening = LineString(ends)
@@ -91,15 +96,8 @@ class Deriver:
             for b in cats[i:]:
                 if a != b or sum(o.category == a for o in objs) > 1:
                     self.pair_rooms[frozenset((a, b))] += 1
-        if len(objs) < 2:
-            return
-        shrunk = [o.footprint(COLLISION_TOLERANCE / 2) for o in objs]
-        tree = shapely.STRtree(shrunk)
         seen = set()
-        for i, j in zip(*tree.query(shrunk, predicate='intersects'), strict=True):
-            a, b = objs[i], objs[j]
-            if i >= j or not heights_overlap(a, b):
-                continue
+        for a, b in overlapping(objs):
             tucked, host = sorted((a, b), key=lambda o: o.width * o.depth)
             key = (tucked.category, host.category)
             self.depths[key].append(overlap_depth(a, b))

@@ -58,7 +58,7 @@ from shapely.geometry import LineString, Point, Polygon
 from ..catalog import Catalog, ModelVariant
 from ..geometry import collisions
 from ..meshes import build_parts, variant_for
-from ..scene import PlacedObject, Room, Scene, rotation
+from ..scene import PlacedObject, Room, Scene, box_corners, rotation
 from ..thresholds import COLLISION_TOLERANCE
 
 GRAVITY = 9.81            # m/s^2, along -z
@@ -335,8 +335,8 @@ def body_of(obj: PlacedObject, room: Room, parent: PlacedObject | None = None,
 def _world_box(piece: Piece, body: Body) -> tuple[np.ndarray, float, float]:
     """A piece's footprint corners in the world and its bottom and top heights."""
     c, s = np.asarray(piece.centre), np.asarray(piece.size)
-    local = np.array([[sx, sy] for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]) * s[:2] / 2
-    world = (local + c[:2]) @ rotation(body.yaw).T + np.asarray(body.position[:2])
+    x, y = c[:2] @ rotation(body.yaw).T + np.asarray(body.position[:2])
+    world = box_corners(x, y, body.yaw, width=s[1], depth=s[0])    # x is a piece's depth
     z = body.position[2] + c[2]
     return world, z - s[2] / 2, z + s[2] / 2
 
