@@ -67,6 +67,7 @@ from .networks.draws import (
     category_probabilities,
     decode_angle,
     location_distribution,
+    log_normaliser,
     prior_noise,
     sigmoid,
     snap_angle,
@@ -530,7 +531,8 @@ class Synthesizer:
             if location is None:
                 with ctx.timed('location'):
                     logits, offsets = ask(ctx.calls, 'location', image)
-                    location = (logits[0], None if offsets is None else offsets[0])
+                    location = (logits[0], None if offsets is None else offsets[0],
+                                log_normaliser(logits[0]))
             obj = self._insert_category(ctx, scene, c, location, small)
             if obj is not None:
                 return obj, 'placed'
@@ -579,7 +581,8 @@ class Synthesizer:
         return int(ctx.rng.choice(len(p), p=p / p.sum()))
 
     def _insert_category(self, ctx: _Context, scene: Scene, c: int,
-                         location: tuple[np.ndarray, np.ndarray | None], small: np.ndarray
+                         location: tuple[np.ndarray, np.ndarray | None, np.ndarray],
+                         small: np.ndarray
                          ) -> PlacedObject | None:
         """An object of category ``c``: locations drawn from the masked, tempered location
         distribution (paper: Object Location), at each an orientation (Object Orientation)
@@ -587,10 +590,11 @@ class Synthesizer:
         Insertion). Locations are drawn ``location_batch`` at a time, so that the orientation
         and dimensions modules see them as one batch."""
         cfg = ctx.config
-        location_logits, offsets = location
+        location_logits, offsets, log_norm = location
         with ctx.timed('location'):
             mask, zoned = self._mask(ctx, scene, ctx.spec.names[c], small)
-            p = location_distribution(location_logits, c, mask, cfg.location_temperature)
+            p = location_distribution(location_logits, c, mask, cfg.location_temperature,
+                                      log_norm)
         if p is None:
             return None
         obj = self._try_locations(ctx, scene, c, LocationDraws(p), cfg.location_samples,

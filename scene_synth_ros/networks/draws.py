@@ -56,16 +56,28 @@ def snap_angle(theta: float) -> float:
     return round(theta / (math.pi / 2)) * (math.pi / 2)
 
 
+def log_normaliser(logits: np.ndarray) -> np.ndarray:
+    """The log of the per-pixel softmax's normaliser of the location module's logits
+    (C + 1, L, L), in float32 as the network gives them: made once for an insertion's
+    logits, shared by its categories' draws."""
+    x = np.asarray(logits, dtype=np.float32)
+    top = x.max(axis=0)
+    return top + np.log(np.exp(x - top).sum(axis=0))
+
+
 def location_distribution(logits: np.ndarray, category: int, mask: np.ndarray,
-                          temperature: float = 0.8) -> np.ndarray | None:
+                          temperature: float = 0.8, log_norm: np.ndarray | None = None
+                          ) -> np.ndarray | None:
     """The sampling distribution over the ``L x L`` grid for ``category`` (index into the
     room type's categories): the category's channel of the per-pixel softmax, zero outside
     ``mask`` (the floor, or the surfaces that can support a second-tier category), then
-    tempered as ``p ** (1 / temperature)``. ``None`` when the mask leaves nothing."""
+    tempered as ``p ** (1 / temperature)``. ``None`` when the mask leaves nothing.
+    ``log_norm``: the logits' ``log_normaliser``, where it is known."""
     if temperature <= 0:
         raise ValueError('the location temperature must be positive')
-    logp = _log_softmax(np.asarray(logits, dtype=np.float64), axis=0)[1 + category]
-    logp = logp / temperature
+    if log_norm is None:
+        log_norm = log_normaliser(logits)
+    logp = (logits[1 + category] - log_norm).astype(np.float64) / temperature
     logp[~mask] = -np.inf
     top = logp.max()
     if not np.isfinite(top):
