@@ -230,6 +230,22 @@ ROBOT_SETTINGS: dict[str, tuple[Setting, float]] = {
 }
 
 
+@dataclass
+class MapConfig:
+    """The occupancy map of a furnished room (``occupancy.py``), as ``scene-synth map`` and
+    the node's ``~/map`` make it."""
+
+    map_resolution: float = setting(0.05, 'metres a cell of the occupancy map',
+                                    bounds=(0.01, 1.0), node=True, flag='--resolution')
+    map_scan_height: float = setting(
+        0.3, "height above the floor at which the robot's laser sees obstacles, for the "
+        'occupancy map (m)', bounds=(0.0, 3.0), node=True, flag='--scan-height')
+
+    def __post_init__(self):
+        for name, (s, _) in settings_of(MapConfig).items():
+            setattr(self, name, check_value(name, getattr(self, name), s))
+
+
 def shared(name: str, default: Any = MISSING) -> Field:
     """A field of another configuration (the node's) that is the synthesis setting ``name``
     (a field of ``SynthConfig`` or one of ``ROBOT_SETTINGS``): the same setting, with its

@@ -4,13 +4,16 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..synth_config import MapConfig, settings_of
 from .common import (
     UserError,
     data_set_option,
+    flag_value,
     load_catalog,
     load_scene_file,
     robot_from,
     robot_options,
+    setting_flag,
 )
 
 
@@ -49,6 +52,20 @@ def add_parser(sub) -> None:
     c.add_argument('files', nargs='+', help='scene or room layout JSON files')
     data_set_option(c)
     c.set_defaults(func=cmd_validate)
+
+    c = sub.add_parser('map', help='write a scene as the occupancy map nav2 loads (map_server '
+                       'YAML and PGM)',
+                       description='Occupied where a wall or an object stands at the scan '
+                       'height, free where the robot drives from the doors, unknown elsewhere '
+                       '(docs/navigation.md).')
+    c.add_argument('scene', help='a scene JSON')
+    c.add_argument('--out', required=True, help='the map YAML to write; its PGM image goes '
+                   'beside it, of the same name')
+    for s, default in settings_of(MapConfig).values():
+        setting_flag(c, s, default, value=default)
+    robot_options(c)
+    data_set_option(c)
+    c.set_defaults(func=cmd_map)
 
     c = sub.add_parser('reach', help='check that a robot can drive between the doors and '
                        'reach every object of scene files (exit 1 when it cannot)',
@@ -115,6 +132,21 @@ def cmd_validate(args) -> int:
         scene = load_scene_file(path, vocabulary=args.vocabulary)
         report = check_scene(scene, of_scene(scene.meta))
         print(f'{path}: schema OK, {len(scene)} objects, physically {report.summary()}')
+    return 0
+
+
+def cmd_map(args) -> int:
+    from ..occupancy import FREE, OCCUPIED, occupancy_grid, write_map
+    robot = robot_from(args)
+    config = MapConfig(**{name: flag_value(s, args)
+                          for name, (s, _) in settings_of(MapConfig).items()})
+    scene = load_scene_file(args.scene, vocabulary=args.vocabulary)
+    grid = occupancy_grid(scene, robot, config)
+    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+    path = write_map(grid, args.out)
+    print(f'wrote {path} and {path.with_suffix(".pgm").name}: {grid.width} x {grid.height} '
+          f'cells of {grid.resolution:g} m, {int((grid.data == FREE).sum())} free, '
+          f'{int((grid.data == OCCUPIED).sum())} occupied')
     return 0
 
 
