@@ -236,10 +236,10 @@ class MapConfig:
     the node's ``~/map`` make it."""
 
     map_resolution: float = setting(0.05, 'metres a cell of the occupancy map',
-                                    bounds=(0.01, 1.0), node=True, flag='--resolution')
+                                    bounds=(0.01, 1.0), flag='--resolution')
     map_scan_height: float = setting(
         0.3, "height above the floor at which the robot's laser sees obstacles, for the "
-        'occupancy map (m)', bounds=(0.0, 3.0), node=True, flag='--scan-height')
+        'occupancy map (m)', bounds=(0.0, 3.0), flag='--scan-height')
 
     def __post_init__(self):
         for name, (s, _) in settings_of(MapConfig).items():

@@ -155,6 +155,7 @@ def test_the_command_writes_the_map(tmp_path):
     bad = subprocess.run([sys.executable, '-m', 'scene_synth_ros.cli', 'map',
                           str(tmp_path / 'room.json'), '--out', str(tmp_path / 'x.yaml'),
                           '--scan-height', '9'], capture_output=True, text=True)
-    assert bad.returncode == 2 and '--scan-height must be between 0.0 and 3.0, got 9.0' in bad.stderr
+    assert bad.returncode == 2
+    assert '--scan-height must be between 0.0 and 3.0, got 9.0' in bad.stderr
     assert len(bad.stderr.strip().splitlines()) == 1
     assert json.loads((tmp_path / 'room.json').read_text())['objects']
