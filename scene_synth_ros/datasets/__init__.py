@@ -15,7 +15,7 @@ Modules, one job each:
 
 Command line: ``scene-synth import {3dfront,suncg,procthor} INPUT... --out DIR``.
 """
-from importlib import import_module
+from ..lazy import lazy_names
 
 __all__ = ['FORMATS', 'ImportConfig', 'ImportResult', 'import_dataset', 'load_room_types']
 
@@ -25,7 +25,4 @@ _LAZY = {'FORMATS': 'config', 'ImportConfig': 'config', 'load_room_types': 'conf
          'ImportResult': 'importer', 'import_dataset': 'importer'}
 
 
-def __getattr__(name):
-    if name in _LAZY:
-        return getattr(import_module(f'{__name__}.{_LAZY[name]}'), name)
-    raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
+__getattr__ = lazy_names(__name__, _LAZY)

@@ -24,12 +24,12 @@ imported when it first writes (the node starts without trimesh, pxr and their ki
 from __future__ import annotations
 
 from dataclasses import dataclass
-from importlib import import_module
 from pathlib import Path
 from typing import Callable
 
 from ..catalog import Catalog
 from ..errors import SceneSynthError, quoted
+from ..lazy import lazy_names
 from ..scene import Scene
 from .architecture import (
     FLOOR_THICKNESS,
@@ -47,12 +47,7 @@ _LAZY = {'export_gltf': 'gltf', 'export_mjcf': 'mjcf', 'export_sdf': 'sdf',
          'PhysicsConfig': 'physics', 'Piece': 'physics', 'scene_bodies': 'physics'}
 
 
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
-    value = getattr(import_module(f'.{_LAZY[name]}', __name__), name)
-    globals()[name] = value
-    return value
+__getattr__ = lazy_names(__name__, _LAZY)
 
 
 class UnknownFormat(SceneSynthError, ValueError):

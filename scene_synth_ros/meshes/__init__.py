@@ -18,7 +18,7 @@ the shipped meshes' names for its markers, does not import trimesh to start.
 """
 from __future__ import annotations
 
-from importlib import import_module
+from ..lazy import lazy_names
 
 # Where each public name is defined.
 _MODULES = {name: module for module, defined in (
@@ -36,9 +36,4 @@ _MODULES = {name: module for module, defined in (
 __all__ = sorted(_MODULES)
 
 
-def __getattr__(name: str):
-    if name not in _MODULES:
-        raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
-    value = getattr(import_module(f'.{_MODULES[name]}', __name__), name)
-    globals()[name] = value
-    return value
+__getattr__ = lazy_names(__name__, _MODULES)

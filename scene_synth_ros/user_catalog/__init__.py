@@ -23,7 +23,7 @@ CATALOG.json`` on ``generate``, ``complete`` and ``export``.
 """
 from __future__ import annotations
 
-from importlib import import_module
+from ..lazy import lazy_names
 
 # Where each public name is defined; imported when first asked for (PEP 562), so that using a
 # catalog file does not import the mesh readers that building one needs.
@@ -33,9 +33,4 @@ _MODULES = {'BuildReport': 'build', 'build_catalog': 'build', 'load_catalog': 's
 __all__ = sorted(_MODULES)
 
 
-def __getattr__(name: str):
-    if name not in _MODULES:
-        raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
-    value = getattr(import_module(f'.{_MODULES[name]}', __name__), name)
-    globals()[name] = value
-    return value
+__getattr__ = lazy_names(__name__, _MODULES)
