@@ -24,6 +24,7 @@ import time
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from geometry_msgs.msg import Point, PolygonStamped, PoseArray
+from nav_msgs.msg import OccupancyGrid
 from rcl_interfaces.msg import (
     FloatingPointRange,
     IntegerRange,
@@ -55,6 +56,7 @@ from .ros_client import LATCHED, RELIABLE
 from .ros_messages import (
     layout_dict,
     object_msg,
+    occupancy_message,
     pose,
     robot_radius_reach_clearance,
     scene_msg,
@@ -223,6 +225,9 @@ class SceneSynthNode(LifecycleNode):
             PoseArray, '~/poses', _own(LATCHED), qos_overriding_options=OVERRIDABLE)
         self.scene_pub = self.create_lifecycle_publisher(
             String, '~/scene', _own(LATCHED), qos_overriding_options=OVERRIDABLE)
+        # as map_server publishes its map: reliable, transient local, the last one
+        self.map_pub = self.create_lifecycle_publisher(
+            OccupancyGrid, '~/map', _own(LATCHED), qos_overriding_options=OVERRIDABLE)
         self._layouts = LayoutOrder()
         made = [self.create_subscription(String, '~/room_layout', self._on_layout, RELIABLE,
                                          callback_group=inputs),
@@ -294,7 +299,7 @@ class SceneSynthNode(LifecycleNode):
                 self.destroy_service(thing)
             else:
                 self.destroy_subscription(thing)
-        for pub in ('markers_pub', 'poses_pub', 'scene_pub'):
+        for pub in ('markers_pub', 'poses_pub', 'scene_pub', 'map_pub'):
             if hasattr(self, pub):
                 self.destroy_lifecycle_publisher(getattr(self, pub))
                 delattr(self, pub)
@@ -452,6 +457,8 @@ class SceneSynthNode(LifecycleNode):
         self.markers_pub.publish(array)
         self.poses_pub.publish(poses)
         self.scene_pub.publish(String(data=served.json))
+        if served.map is not None:
+            self.map_pub.publish(occupancy_message(served.map, cfg.frame_id, stamp))
         added = f', {len(served.added)} added in {served.seconds:.2f} s' if served.added else ''
         seed = '' if served.seed is None else f' (seed {served.seed})'
         self.get_logger().info(
@@ -534,7 +541,10 @@ def usage() -> str:
               '  ~/scene         std_msgs/String: the furnished room as JSON',
               '  ~/markers       visualization_msgs/MarkerArray',
               '  ~/poses         geometry_msgs/PoseArray: one pose per object',
-              '                  (these three reliable and transient local, depth 1)',
+              '  ~/map           nav_msgs/OccupancyGrid: the room as map_server would serve '
+              'it',
+              '                  (map_resolution, map_scan_height; docs/navigation.md)',
+              '                  (these four reliable and transient local, depth 1)',
               '  /diagnostics    diagnostic_msgs/DiagnosticArray, once a second',
               '', 'action (ros2 interface show scene_synth_msgs/action/Furnish):',
               '  ~/furnish       furnish a layout (typed or as text) with a seed and a robot;',

@@ -79,18 +79,18 @@ def occupancy_grid(scene: Scene, robot: Robot | None = None,
     robot = robot or Robot()
     config = config or MapConfig()
     h = config.map_scan_height
+    room = scene.room
     seen = [Polygon(box_corners(b.centre[0], b.centre[1], b.yaw, b.size[1], b.size[0]))
-            for b in wall_boxes(scene.room)
+            for b in wall_boxes(room)
             if b.centre[2] - b.size[2] / 2 <= h <= b.centre[2] + b.size[2] / 2]
     seen += [o.footprint() for o in scene.objects if o.position[2] <= h <= o.top]
     solid = shapely.union_all(seen)
-    if scene.room.doors:
+    if room.doors:
         free = driven_floor(scene, robot)
     else:
         free = free_space(scene, robot.width).buffer(robot.radius)
-    free = free.intersection(scene.room.polygon)
+    free = free.intersection(room.polygon)
     # The robot passes the doors' openings through the walls' thickness too.
-    room = scene.room
     gaps = []
     for door in room.doors:
         wall = room.wall_of(door)
@@ -98,7 +98,7 @@ def occupancy_grid(scene: Scene, robot: Robot | None = None,
         gaps.append(Polygon(box_corners(centre[0], centre[1], wall.inward_yaw, door.width,
                                         WALL_THICKNESS)))
     free = shapely.union_all([free, *gaps])
-    bounds = shapely.union_all([scene.room.polygon, solid]).bounds
+    bounds = shapely.union_all([room.polygon, solid]).bounds
     lo = np.asarray(bounds[:2]) - MARGIN
     hi = np.asarray(bounds[2:]) + MARGIN
     r = config.map_resolution

@@ -18,6 +18,7 @@ import uuid
 
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Point32, PolygonStamped, PoseArray
+from nav_msgs.msg import OccupancyGrid
 from rcl_interfaces.msg import Parameter as ParameterMsg
 import rclpy
 from rclpy.action import ActionClient
@@ -52,7 +53,7 @@ RELIABLE = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
 # latched subscription too, and a layout sent right after another could be served before it
 # (node.py). The middleware warns once that the latched subscription is incompatible.
 LAYOUTS = RELIABLE
-TOPICS = {'scene': String, 'markers': MarkerArray, 'poses': PoseArray}
+TOPICS = {'scene': String, 'markers': MarkerArray, 'poses': PoseArray, 'map': OccupancyGrid}
 # The node's std_srvs/Trigger services (``server.REQUESTS``; this module does not import the
 # library behind the node).
 SERVICES = ('generate', 'next_object', 'reset', 'suggest')
@@ -153,14 +154,14 @@ class SceneSynthClient:
 
     def wait_room(self, after: dict[str, int], timeout: float = 60.0):
         """(scene dict, MarkerArray, PoseArray) of a room published after ``after``
-        (from ``counts``): waits for all three topics."""
+        (from ``counts``): waits for all its topics (its map too, ``latest('map')``)."""
         self.spin_until(lambda: all(self._counts[t] > after[t] for t in TOPICS), timeout,
                         'room (scene, markers and poses)')
         return (json.loads(self.received['scene'][-1][2].data),
                 self.received['markers'][-1][2], self.received['poses'][-1][2])
 
     def latest(self, topic: str, timeout: float = 5.0):
-        """The latest message on ``topic`` (scene, markers, poses, diagnostics)."""
+        """The latest message on ``topic`` (scene, markers, poses, map, diagnostics)."""
         return self.spin_until(lambda: self.received[topic] and self.received[topic][-1][2],
                                timeout, topic)
 
@@ -369,6 +370,16 @@ def format_poses(msg: PoseArray) -> str:
         lines.append(f'{k:3d}  x {p.position.x:6.2f}  y {p.position.y:6.2f}  '
                      f'z {p.position.z:5.2f}  yaw {math.degrees(yaw):7.1f}°')
     return '\n'.join(lines)
+
+
+def format_map(msg: OccupancyGrid) -> str:
+    info = msg.info
+    data = bytes(msg.data)
+    occupied, free = data.count(100), data.count(0)
+    return (f'frame {msg.header.frame_id}, {info.width} x {info.height} cells of '
+            f'{info.resolution:g} m, origin x {info.origin.position.x:.3f} y '
+            f'{info.origin.position.y:.3f}: {occupied} occupied, {free} free, '
+            f'{len(data) - occupied - free} unknown')
 
 
 # ---- the node as a child process ---------------------------------------------------------

@@ -6,11 +6,13 @@ Like ``node.py`` this is an adapter: it imports ROS message types; the library d
 """
 from __future__ import annotations
 
+from array import array
 import json
 import math
 from typing import Any
 
 from geometry_msgs.msg import Point, Point32, Pose, Vector3
+from nav_msgs.msg import OccupancyGrid as OccupancyGridMsg
 from scene_synth_msgs.msg import (
     Door,
     PlacedObject,
@@ -30,6 +32,20 @@ def quaternion_yaw(q) -> float:
     """The rotation about +z of quaternion ``q`` (its heading; a tilt is dropped). The
     all-zero quaternion of a message left unset reads as yaw 0."""
     return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+
+
+def occupancy_message(grid, frame_id: str, stamp) -> OccupancyGridMsg:
+    """``grid`` (``occupancy.OccupancyGrid``) as nav_msgs/OccupancyGrid: rows from the
+    origin's, row-major, 100 occupied, 0 free, -1 unknown, as map_server publishes a map."""
+    msg = OccupancyGridMsg()
+    msg.header.frame_id, msg.header.stamp = frame_id, stamp
+    msg.info.map_load_time = stamp
+    msg.info.resolution = float(grid.resolution)
+    msg.info.width, msg.info.height = grid.width, grid.height
+    msg.info.origin = pose((grid.origin[0], grid.origin[1], 0.0), 0.0)
+    # an array of int8 is taken whole; a list would be checked value by value
+    msg.data = array('b', grid.data.tobytes())
+    return msg
 
 
 def pose(position, yaw: float) -> Pose:

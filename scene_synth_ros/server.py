@@ -43,12 +43,13 @@ from .files import write_atomic
 from .markers import MARKER_STYLES
 from .networks.config import device_name
 from .networks.runtime import set_threads
+from .occupancy import OccupancyGrid, occupancy_grid
 from .rules import robot
 from .rules.robot import Robot, RobotReport
 from .scene import PlacedObject, Scene
 from .schema import dump_scene, parse_room_layout
 from .synth import MODULES, SynthConfig, SynthesisCancelled, Synthesizer, check_room_fits
-from .synth_config import check_value, setting, settings_of, shared
+from .synth_config import MapConfig, check_value, setting, settings_of, shared
 from .user_catalog import load_catalog
 
 OK, WARN, ERROR = 0, 1, 2               # the levels of diagnostic_msgs/DiagnosticStatus
@@ -110,6 +111,8 @@ class ServerConfig:
     robot_radius: float = shared('robot_radius')
     robot_reach: float = shared('robot_reach')
     robot_clearance: float = shared('robot_clearance')
+    map_resolution: float = shared('map_resolution')
+    map_scan_height: float = shared('map_scan_height')
 
 
 # name -> (description, numeric range or allowed strings, read only), from ServerConfig's
@@ -260,6 +263,7 @@ class Served:
     timings: dict[str, float] = field(default_factory=dict)
     json: str = ''                       # the scene as published on ~/scene
     robot: RobotReport | None = None     # the robot promise, when synthesis measured it
+    map: OccupancyGrid | None = None     # the room for a navigation stack, as ~/map has it
     catalog: Catalog = PROCEDURAL        # whose model ids the scene holds (catalog_dir)
     vocabulary: Vocabulary = PAPER       # whose room types and categories (the weights')
 
@@ -779,6 +783,8 @@ class SceneServer:
         # one more object, a layout published as given) are measured here.
         promise = served.robot or robot.report(served.scene, robot_of(self.config))
         served.scene.meta['robot'] = promise.to_dict()
+        served.map = occupancy_grid(served.scene, robot_of(self.config),
+                                    map_of(self.config))
         # Never publish what the schema would refuse; the model ids are the catalog's.
         served.json = dump_scene(served.scene, served.catalog, served.vocabulary)
         with self._lock:
@@ -846,6 +852,11 @@ class SceneServer:
             self.status = replace(self.status, **changes)
             status = self.status
         self._on_status(status)
+
+
+def map_of(config: ServerConfig) -> MapConfig:
+    """The occupancy map's settings of the node's parameters."""
+    return MapConfig(config.map_resolution, config.map_scan_height)
 
 
 def robot_of(config: ServerConfig) -> Robot:

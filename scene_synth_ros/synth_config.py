@@ -247,10 +247,11 @@ class MapConfig:
 
 
 def shared(name: str, default: Any = MISSING) -> Field:
-    """A field of another configuration (the node's) that is the synthesis setting ``name``
-    (a field of ``SynthConfig`` or one of ``ROBOT_SETTINGS``): the same setting, with its
-    default unless ``default`` is given."""
-    s, own = ROBOT_SETTINGS.get(name) or settings_of(SynthConfig)[name]
+    """A field of another configuration (the node's) that is the setting ``name`` of
+    synthesis or of its map (a field of ``SynthConfig`` or ``MapConfig``, or one of
+    ``ROBOT_SETTINGS``): the same setting, with its default unless ``default`` is given."""
+    s, own = (ROBOT_SETTINGS.get(name) or settings_of(MapConfig).get(name)
+              or settings_of(SynthConfig)[name])
     return field(default=own if default is MISSING else default, metadata={SETTING: s})
 
 

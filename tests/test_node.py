@@ -147,6 +147,39 @@ def test_a_late_subscriber_receives_the_last_room(node):
     _objects_agree(scene, markers, poses)
 
 
+def test_every_room_comes_with_its_occupancy_map_and_the_map_parameters_shape_it(node):
+    import numpy as np
+
+    from scene_synth_ros.occupancy import FREE, OCCUPIED, occupancy_grid
+    from scene_synth_ros.synth_config import MapConfig
+    d = _furnish(node)
+    with SceneSynthClient(domain_id=node.domain) as late:      # latched, as map_server's
+        grid = late.latest('map', timeout=10.0)
+    scene = parse_scene(d)
+    want = occupancy_grid(scene, config=MapConfig())
+    assert grid.header.frame_id == 'map'
+    assert (grid.info.width, grid.info.height) == (want.width, want.height)
+    assert grid.info.resolution == pytest.approx(0.05)
+    assert (grid.info.origin.position.x, grid.info.origin.position.y) == \
+        pytest.approx(want.origin)
+    data = np.frombuffer(bytes(grid.data), dtype=np.int8).reshape(want.data.shape)
+    assert (data == want.data).all()
+    assert (data == OCCUPIED).any() and (data == FREE).any()
+    try:
+        assert node.client.set_parameters({'map_resolution': 0.1, 'map_scan_height': 1.5}) \
+            == []
+        before = node.client.count('map')
+        d = _furnish(node)
+        node.client.spin_until(lambda: node.client.count('map') > before, 10.0, 'map')
+        grid = node.client.latest('map')
+        coarse = occupancy_grid(parse_scene(d), config=MapConfig(0.1, 1.5))
+        assert grid.info.resolution == pytest.approx(0.1)
+        assert (grid.info.width, grid.info.height) == (coarse.width, coarse.height)
+        assert bytes(grid.data) == coarse.data.tobytes()
+    finally:
+        node.client.set_parameters({'map_resolution': 0.05, 'map_scan_height': 0.3})
+
+
 def test_services_reset_next_object_and_generate(node):
     first = _furnish(node)
     client = node.client
@@ -621,7 +654,7 @@ def test_help_prints_the_usage_and_a_stray_argument_is_named():
                        capture_output=True, text=True, timeout=60)
     assert r.returncode == 0 and r.stderr == ''
     for name in [*PARAMETERS, '~/room_layout', '~/room_polygon', '~/scene', '~/markers',
-                 '~/poses', '/diagnostics', '~/generate', '~/next_object', '~/suggest',
+                 '~/poses', '~/map', '/diagnostics', '~/generate', '~/next_object', '~/suggest',
                  '~/reset', "'living room'"]:
         assert name in r.stdout
     r = subprocess.run([sys.executable, '-m', 'scene_synth_ros.node', '-p', 'seed:=3'],

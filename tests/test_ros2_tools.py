@@ -170,6 +170,8 @@ def test_the_node_guide_commands_with_the_real_tools(launched):
     responses = [o for o in outputs if 'response:' in o]
     assert responses and all('success=True' in r for r in responses), responses
     assert any("category='office chair'" in r for r in responses)
+    maps = [o for o in outputs if 'resolution: 0.05' in o]
+    assert len(maps) == 1 and re.search(r'width: [1-9]\d*', maps[0]), outputs
     assert outputs[-1].strip() == 'Integer value is: 43'
 
 

@@ -47,7 +47,7 @@ def add_parser(sub) -> None:
     c.set_defaults(func=cmd_service, service='reset')
 
     c = rsub.add_parser('echo', help='print the latest message of a topic')
-    c.add_argument('topic', choices=('scene', 'markers', 'poses', 'diagnostics'))
+    c.add_argument('topic', choices=('scene', 'markers', 'poses', 'map', 'diagnostics'))
     c.add_argument('--count', type=int, default=1, help='messages to print (diagnostics: '
                    'one per second)')
     c.set_defaults(func=cmd_echo)
@@ -123,9 +123,9 @@ def _wait_for_next(client, topic: str, timeout: float) -> None:
 
 
 def cmd_echo(args) -> int:
-    from ..ros_client import format_markers, format_poses
+    from ..ros_client import format_map, format_markers, format_poses
     formats = {'scene': lambda msg: msg.data, 'markers': format_markers,
-               'poses': format_poses}
+               'poses': format_poses, 'map': format_map}
     with _client(args) as client:
         for k in range(args.count):
             if k:
