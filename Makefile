@@ -66,8 +66,10 @@ demo: install
 	$(VENV)/bin/scene-synth ros demo --out demo_out
 
 # The whole suite, after the linter.
+# The suite on every core (pytest-xdist), a test file to a worker: TEST_WORKERS=1 for one.
+TEST_WORKERS ?= auto
 test: lint ros2-tools
-	$(PY) -m pytest -q --durations=20
+	$(PY) -m pytest -q -n $(TEST_WORKERS) --dist loadfile --durations=20
 
 # The lane for people working on the code: everything but the tests marked slow.
 test-fast: install

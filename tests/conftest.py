@@ -2,7 +2,10 @@
 depending on the quality of the shipped weights; the command line run in this process; and
 where the repository and its example files are."""
 from dataclasses import dataclass
+import itertools
+import os
 from pathlib import Path
+import random
 
 import pytest
 import torch
@@ -91,3 +94,14 @@ def cli(capsys):
         return CliRun(code, out, err)
 
     return run
+
+
+def ros_domains(lo: int, hi: int):
+    """ROS domains of [lo, hi) for the nodes and tools of this test process, in an order of
+    its own: under pytest-xdist a worker takes every W-th domain (W workers), so that tests
+    running side by side never share a domain; a random order keeps test runs apart."""
+    count = int(os.environ.get('PYTEST_XDIST_WORKER_COUNT', '1'))
+    index = int(os.environ.get('PYTEST_XDIST_WORKER', 'gw0').removeprefix('gw'))
+    mine = [d for d in range(lo, hi) if d % count == index]
+    random.Random().shuffle(mine)
+    return itertools.cycle(mine)

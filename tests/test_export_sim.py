@@ -267,3 +267,48 @@ def test_a_seat_tucked_under_its_table_rests_in_both_engines(host, host_size, se
         pb = pybullet_rest(export_urdf(scene, tmp_path / f'{k}.urdf'))
         assert mj.passed(), mj.failures()
         assert pb.passed(), pb.failures()
+
+
+def test_things_inside_a_shelf_and_a_mounted_cabinet_rest_in_both_engines(tmp_path):
+    """A book on a shelf board and a bottle inside a fridge (below their parent's top, as a
+    data set's allowance lets them be: ``allowance.Allowance.inside``) rest in a cavity cut
+    out of their parent; a wall cabinet 1.5 m up is exported fixed, as a wall is."""
+    from shapely.geometry import Polygon
+
+    from scene_synth_ros.export.physics import _world_box
+    from scene_synth_ros.scene import Opening, Room, Scene
+    room = Room('living', ((0, 0), (5, 0), (5, 4), (0, 4)), 2.6,
+                (Opening('door', (2.5, 0.0), 0.9, 2.05),))
+    scene = Scene(room, [
+        PlacedObject('shelf', 'shelving', '', (0.2, 2.0, 0.0), 0.0, (0.9, 0.35, 1.9)),
+        PlacedObject('book', 'book', '', (0.2, 1.8, 0.8), 0.3, (0.2, 0.15, 0.25),
+                     support='shelf'),
+        PlacedObject('vase', 'vase', '', (0.2, 2.25, 1.9), 0.0, (0.12, 0.12, 0.3),
+                     support='shelf'),
+        PlacedObject('fridge', 'fridge', '', (4.6, 2.0, 0.0), math.pi, (0.6, 0.65, 1.7)),
+        PlacedObject('bottle', 'bottle', '', (4.6, 2.1, 0.5), 0.0, (0.08, 0.08, 0.3),
+                     support='fridge'),
+        PlacedObject('cabinet', 'cabinet', '', (2.5, 3.8, 1.5), math.pi, (0.8, 0.35, 0.6))])
+    bodies = {b.id: b for b in scene_bodies(scene)}
+    assert [b.id for b in bodies.values() if b.fixed] == ['cabinet']
+    for parent, child in (('shelf', 'book'), ('fridge', 'bottle')):
+        host, inner = bodies[parent], bodies[child]
+        assert len(host.pieces) > 1                      # hollowed: a box is one piece
+        # nothing of the parent is left where the child stands, and the child's base sits
+        # on what is left below it
+        tops = []
+        for p in inner.pieces:
+            pa, p0, p1 = _world_box(p, inner)
+            for q in host.pieces:
+                qa, q0, q1 = _world_box(q, host)
+                overlap = Polygon(pa).intersection(Polygon(qa)).area
+                assert not (min(p1, q1) - max(p0, q0) > 1e-4 and overlap > 1e-6)
+                if overlap > 1e-6 and q1 <= p0 + 1e-6:
+                    tops.append(q1)
+        assert max(tops) == pytest.approx(scene.get(child).position[2], abs=1e-6)
+    assert len(bodies['vase'].pieces) == 1 and bodies['shelf'].mass > 0
+    mj = mujoco_rest(export_mjcf(scene, tmp_path / 'room.xml'))
+    pb = pybullet_rest(export_urdf(scene, tmp_path / 'room.urdf'))
+    for report in (mj, pb):
+        assert report.passed(), report.failures()
+        assert report.bodies == 5                        # all but the mounted cabinet

@@ -6,13 +6,11 @@ from __future__ import annotations
 
 from dataclasses import fields
 import gc
-import itertools
 import json
 import math
 import multiprocessing
 import os
 from pathlib import Path
-import random
 import shutil
 import signal
 import subprocess
@@ -21,6 +19,7 @@ import time
 from xml.etree import ElementTree as ET
 
 from action_msgs.msg import GoalStatus
+from conftest import ros_domains
 import pytest
 from scene_synth_msgs.action import Furnish
 from scene_synth_msgs.msg import Robot
@@ -49,7 +48,7 @@ from scene_synth_ros.user_catalog import load_catalog  # noqa: E402
 LAYOUT = (examples_dir() / 'bedroom_layout.json').read_text()
 L_LAYOUT = (examples_dir() / 'lshaped_living_layout.json').read_text()
 # Domains 1..232 are valid for Fast DDS; a random start keeps two concurrent runs apart.
-_DOMAINS = itertools.count(random.Random().randrange(1, 150))
+_DOMAINS = ros_domains(1, 150)
 MARKER_CUBE, MARKER_MESH = 1, 10
 
 

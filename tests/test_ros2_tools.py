@@ -8,13 +8,13 @@ are skipped, as the real-data tests are without ../shared/data.
 """
 import os
 from pathlib import Path
-import random
 import re
 import signal
 import subprocess
 import sys
 import time
 
+from conftest import ros_domains
 import pytest
 
 from scene_synth_ros.schema import parse_scene
@@ -30,7 +30,7 @@ pytestmark = [
 ECHO_SCENE = ('ros2 topic echo --once --field data --full-length --qos-reliability reliable '
               '--qos-durability transient_local /scene_synth_node/scene std_msgs/msg/String')
 # Domains apart from tests/test_node.py's (which count up from below 150).
-_DOMAINS = iter(random.Random().sample(range(160, 230), 60))
+_DOMAINS = ros_domains(160, 230)
 
 
 _USED: list[dict] = []      # the environments of the domains used, for the daemons' end

@@ -153,7 +153,7 @@ def export_mjcf(scene: Scene, path: str | Path, mesh_dir: str | Path | None = No
     world = _sub(root, 'worldbody')
     _architecture(world, scene)
     for body in bodies:
-        _body(world, body, visuals, fixed)
+        _body(world, body, visuals, fixed or body.fixed)
     ET.indent(root)
     path.write_text(ET.tostring(root, encoding='unicode') + '\n')
     return path

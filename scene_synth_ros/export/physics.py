@@ -39,6 +39,19 @@ Tucked objects
     legs end under the table's apron, its arms stop at the apron's face; both bodies start
     apart and rest.
 
+Things inside their parent
+    A data set's rooms stand things inside their parent (a book on a shelf board, a bottle
+    in a fridge: ``allowance.Allowance.inside``), below its top. The parent's pieces are then
+    hollowed where the child stands (``hollowed_pieces``): the child's box, ``clearance``
+    wider on each side and above, is cut out of them down to the child's base, so the child
+    rests on the solid left below it, a board at that height, and the walls left around it
+    keep it there.
+
+Mounted objects
+    A first-tier object whose base is above the floor (a data set's wall cabinet or shelf,
+    which the room keeps by height) has nothing under it to stand on: it is exported fixed,
+    as the walls it hangs on are (``Body.fixed``).
+
 Mass and inertia
     mass = the object's box volume x a bulk density per category group (``DENSITIES``, kg
     per cubic metre of bounding box, set from typical masses: a 1.4 m desk 30 kg, a double
@@ -56,7 +69,7 @@ import numpy as np
 from shapely.geometry import LineString, Point, Polygon
 
 from ..catalog import Catalog, ModelVariant
-from ..geometry import collisions
+from ..geometry import collisions, raised
 from ..meshes import build_parts, variant_for
 from ..scene import PlacedObject, Room, Scene, box_corners, rotation
 from ..thresholds import COLLISION_TOLERANCE
@@ -150,6 +163,7 @@ class Body:
     com: tuple[float, float, float]             # centre of mass, object frame
     inertia: np.ndarray                         # 3x3 about the centre of mass, object frame
     support: str | None = None
+    fixed: bool = False                         # mounted: held by the wall, not by physics
 
     def principal_inertia(self) -> tuple[np.ndarray, np.ndarray]:
         """Principal moments (ascending) and the rotation whose columns are their axes, a
@@ -328,8 +342,9 @@ def body_of(obj: PlacedObject, room: Room, parent: PlacedObject | None = None,
     pieces = clipped_pieces(model_pieces(variant, config.merge), obj.size, insets)
     mass = density(obj.category) * obj.width * obj.depth * obj.height
     com, inertia = mass_properties(pieces, mass)
+    mounted = parent is None and raised(obj)
     return Body(obj.id, obj.category, variant, tuple(float(v) for v in obj.position),
-                float(obj.yaw), pieces, float(mass), com, inertia, obj.support)
+                float(obj.yaw), pieces, float(mass), com, inertia, obj.support, mounted)
 
 
 def _world_box(piece: Piece, body: Body) -> tuple[np.ndarray, float, float]:
@@ -384,10 +399,54 @@ def untucked_pieces(tucked: Body, host: Body, gap: float) -> tuple[Piece, ...]:
     return tuple(pieces)
 
 
+def _local_bounds(inner: Body, host: Body) -> tuple[np.ndarray, np.ndarray]:
+    """The box around ``inner``'s pieces in ``host``'s frame (axis-aligned there)."""
+    corners, bottoms, tops = [], [], []
+    for p in inner.pieces:
+        world, bottom, top = _world_box(p, inner)
+        corners.append(world)
+        bottoms.append(bottom)
+        tops.append(top)
+    local = (np.vstack(corners) - np.asarray(host.position[:2])) @ rotation(host.yaw)
+    lo = np.array([*local.min(axis=0), min(bottoms) - host.position[2]])
+    hi = np.array([*local.max(axis=0), max(tops) - host.position[2]])
+    return lo, hi
+
+
+def _box_less(piece: Piece, lo: np.ndarray, hi: np.ndarray) -> tuple[Piece, ...]:
+    """``piece`` less the box [``lo``, ``hi``], as up to six boxes: the slabs below and above
+    it, then beside it along x, then along y."""
+    a = np.asarray(piece.centre) - np.asarray(piece.size) / 2
+    b = np.asarray(piece.centre) + np.asarray(piece.size) / 2
+    c, d = np.maximum(a, lo), np.minimum(b, hi)
+    if np.any(d - c <= 0):
+        return (piece,)
+    slabs = []
+    inner_lo, inner_hi = a.copy(), b.copy()
+    for axis in (2, 0, 1):
+        below, above = (inner_lo.copy(), inner_hi.copy()), (inner_lo.copy(), inner_hi.copy())
+        below[1][axis] = c[axis]
+        above[0][axis] = d[axis]
+        slabs += [below, above]
+        inner_lo[axis], inner_hi[axis] = c[axis], d[axis]
+    return tuple(Piece(tuple(float(v) for v in (p + q) / 2), tuple(float(v) for v in q - p))
+                 for p, q in slabs if np.all(q - p > 1e-3))
+
+
+def hollowed_pieces(host: Body, inner: Body, gap: float) -> tuple[Piece, ...]:
+    """``host``'s pieces less the space ``inner`` stands in inside it: its box, ``gap`` wider
+    on each side and above, from its base up (see the module docstring)."""
+    lo, hi = _local_bounds(inner, host)
+    lo = np.array([lo[0] - gap, lo[1] - gap, lo[2]])
+    hi = hi + gap
+    pieces = tuple(q for p in host.pieces for q in _box_less(p, lo, hi))
+    return pieces or host.pieces
+
+
 def scene_bodies(scene: Scene, config: PhysicsConfig = DEFAULT_PHYSICS,
                  catalog: Catalog | None = None) -> list[Body]:
     """Every object of ``scene`` as a rigid body, in the scene's order (tucked ones cut out
-    of their hosts)."""
+    of their hosts, parents hollowed where a child stands inside them)."""
     by_id = {o.id: o for o in scene.objects}
     bodies = {o.id: body_of(o, scene.room, by_id.get(o.support) if o.support else None,
                             config, catalog)
@@ -398,6 +457,13 @@ def scene_bodies(scene: Scene, config: PhysicsConfig = DEFAULT_PHYSICS,
         pieces = untucked_pieces(body, bodies[host], config.clearance)
         com, inertia = mass_properties(pieces, body.mass)
         bodies[tucked] = replace(body, pieces=pieces, com=com, inertia=inertia)
+    for o in scene.objects:
+        parent = by_id.get(o.support) if o.support else None
+        if parent is not None and o.position[2] < parent.top - config.clearance:
+            host = bodies[parent.id]
+            pieces = hollowed_pieces(host, bodies[o.id], config.clearance)
+            com, inertia = mass_properties(pieces, host.mass)
+            bodies[parent.id] = replace(host, pieces=pieces, com=com, inertia=inertia)
     return [bodies[o.id] for o in scene.objects]
 
 

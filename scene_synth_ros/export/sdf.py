@@ -141,7 +141,7 @@ def export_sdf(scene: Scene, path: str | Path, mesh_dir: str | Path | None = Non
     _architecture(parent, scene)
     for body in scene_bodies(scene, physics, catalog):
         uri = _uri(meshes, meshes.obj(body.variant), path.parent)
-        _object(parent, body, uri, fixed, physics.friction)
+        _object(parent, body, uri, fixed or body.fixed, physics.friction)
     ET.indent(sdf)
     path.write_text('<?xml version="1.0"?>\n' + ET.tostring(sdf, encoding='unicode') + '\n')
     return path

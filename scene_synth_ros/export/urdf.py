@@ -143,7 +143,7 @@ def export_urdf(scene: Scene, path: str | Path, mesh_dir: str | Path | None = No
                         'position': list(body.position),
                         'orientation_xyzw': [0.0, 0.0, math.sin(body.yaw / 2),
                                              math.cos(body.yaw / 2)],
-                        'fixed': fixed, 'support': body.support})
+                        'fixed': fixed or body.fixed, 'support': body.support})
     poses_path(path).write_text(json.dumps({'room': path.name, 'objects': entries}, indent=1)
                                 + '\n')
     return path

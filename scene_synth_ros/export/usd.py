@@ -139,7 +139,8 @@ def export_usd(scene: Scene, path: str | Path, mesh_dir: str | Path | None = Non
     for body in scene_bodies(scene, physics, catalog):
         model_file = './' + meshes.relative(meshes.usd(body.variant))
         name = identifier(body.id, taken)
-        _object(stage, f'/World/Objects/{name}', body, model_file, fixed, physics_material)
+        _object(stage, f'/World/Objects/{name}', body, model_file, fixed or body.fixed,
+                physics_material)
     if not layer.Save():
         raise OSError(errno.EACCES, f'USD cannot save {path}')
     return path
