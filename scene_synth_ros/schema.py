@@ -43,10 +43,11 @@ from . import catalog
 from .categories import CATEGORIES, PAPER, RoomTypeSpec, Vocabulary
 from .errors import SceneSynthError, UnknownRoomType, number, quoted, with_article
 from .files import write_atomic
+from .house import House, HouseDoor
 from .limits import LimitExceeded, YamlError, check_tree, join, loads, loads_yaml
 from .paths import schema_dir
 from .render import RoomDoesNotFit, room_frame_box
-from .scene import PlacedObject, Room, Scene, ccw, fresh_id
+from .scene import DEFAULT_WALL_HEIGHT, Opening, PlacedObject, Room, Scene, ccw, fresh_id
 from .thresholds import (
     CENTRE_OFF_FLOOR,
     MIN_FLOOR_AREA,
@@ -59,6 +60,7 @@ __all__ = [
     'SceneValidationError', 'parse_room_layout', 'parse_scene', 'load_scene', 'dump_scene',
     'save_scene', 'validate_scene_dict', 'validate_layout_dict', 'SCHEMA_IDS',
     'plain_json', 'check_against_schema', 'check_floor', 'format_json', 'read_payload',
+    'parse_house_layout', 'is_house_layout',
 ]
 
 _BASE = 'https://scene-synth-ros.invalid/msg_schemas/'
@@ -66,6 +68,7 @@ SCHEMA_IDS = {
     'room_layout': _BASE + 'room_layout.schema.json',
     'placed_object': _BASE + 'placed_object.schema.json',
     'scene': _BASE + 'scene.schema.json',
+    'house_layout': _BASE + 'house_layout.schema.json',
 }
 
 
@@ -349,10 +352,16 @@ def _check_fits(room: Room, prefix: str, vocabulary: Vocabulary) -> None:
         raise SceneValidationError(str(RoomDoesNotFit(box, path)), path)
 
 
-def _check_openings(room: Room, prefix: str) -> None:
+def _check_openings(room: Room, prefix: str,
+                    named: list[tuple[str, Opening]] | None = None) -> None:
+    """Each opening of ``room`` within the wall height, on one wall, not overlapping another;
+    ``named``: (path, opening) of each, where the paths are not the room's own (a house's
+    doors)."""
     placed = []       # (path, wall index, start offset, end offset) of checked openings
-    named = ([(_join(_join(prefix, 'doors'), i), o) for i, o in enumerate(room.doors)]
-             + [(_join(_join(prefix, 'windows'), i), o) for i, o in enumerate(room.windows)])
+    if named is None:
+        named = ([(_join(_join(prefix, 'doors'), i), o) for i, o in enumerate(room.doors)]
+                 + [(_join(_join(prefix, 'windows'), i), o)
+                    for i, o in enumerate(room.windows)])
     for path, op in named:
         top = op.sill + op.height
         if top > room.wall_height + 1e-9:
@@ -552,6 +561,120 @@ def _layout_to_scene(d: Any, models: catalog.Catalog | None = None,
     items = d.get('objects', [])
     objects = _build_objects(items, room, 'objects', models, vocabulary)
     return Scene(room, objects, {'request_id': d['request_id']} if 'request_id' in d else {})
+
+
+# ----------------------------------------------------------------------------- houses
+
+# Square metres two rooms' floors may share before they overlap (a rounding of shared walls).
+HOUSE_OVERLAP = 1e-3
+
+
+def _house_rooms(d: dict[str, Any], vocabulary: Vocabulary) -> tuple[list[Room], list[str]]:
+    """Each room of a (schema-valid) house layout as a room layout's is checked, without
+    doors, and that no two overlap; the rooms and the names the sentences give them."""
+    ids: dict[str, int] = {}
+    for i, rd in enumerate(d['rooms']):
+        if rd['id'] in ids:
+            path = f'rooms[{i}].id'
+            raise SceneValidationError(f'{path} {quoted(rd["id"])} is the id of rooms'
+                                       f'[{ids[rd["id"]]}] too: room ids must be unique', path)
+        ids[rd['id']] = i
+    height = d.get('wall_height', DEFAULT_WALL_HEIGHT)
+    rooms = [_build_room({**rd, 'wall_height': rd.get('wall_height', height), 'doors': []},
+                         f'rooms[{i}]', vocabulary) for i, rd in enumerate(d['rooms'])]
+    names = [f'rooms[{i}] ({quoted(rd["id"])})' for i, rd in enumerate(d['rooms'])]
+    polygons = [room.polygon for room in rooms]
+    tree = shapely.STRtree(polygons)
+    for i, j in zip(*tree.query(polygons, predicate='intersects'), strict=True):
+        if i < j:
+            shared = polygons[i].intersection(polygons[j]).area
+            if shared > HOUSE_OVERLAP:
+                path = f'rooms[{j}].floor'
+                raise SceneValidationError(
+                    f'{path} overlaps {names[i]} by {number(shared)} m²: the rooms of a house '
+                    f'must not overlap, only share walls', path)
+    return rooms, names
+
+
+def _house_door(dd: dict[str, Any], path: str, ids: dict[str, int], rooms: list[Room],
+                names: list[str]) -> tuple[list[int], HouseDoor]:
+    """A (schema-valid) door of a house layout, after the checks that the rooms it names
+    exist and share the wall it lies on (an entrance: lies on an outside wall); the indices
+    of its rooms and the door."""
+    members = []
+    for k, rid in enumerate(dd['rooms']):
+        if rid not in ids:
+            rpath = f'{path}.rooms[{k}]'
+            raise SceneValidationError(
+                f'{rpath} {quoted(rid)} is not the id of a room of the house', rpath)
+        members.append(ids[rid])
+    if len(members) == 2 and members[0] == members[1]:
+        raise SceneValidationError(f'{path}.rooms names {quoted(dd["rooms"][0])} twice: a '
+                                   'door joins two rooms, or leads out of one', path)
+    opening = Opening('door', (float(dd['position'][0]), float(dd['position'][1])),
+                      float(dd['width']), float(dd['height']))
+    on = [i for i, room in enumerate(rooms) if room.wall_of(opening, OPENING_TOLERANCE)]
+    for i in members:
+        if i not in on:
+            raise SceneValidationError(
+                f'{path} is not on a wall of {names[i]}'
+                + (f': it is on a wall of {names[on[0]]}' if on else '')
+                + (', so those rooms do not share the wall it is on' if len(members) == 2
+                   else ''), path)
+    others = [i for i in on if i not in members]
+    if len(members) == 1 and others:
+        raise SceneValidationError(
+            f'{path} leads outside from {names[members[0]]} but lies on the wall it shares '
+            f'with {names[others[0]]}: name both rooms for a door between them', path)
+    return members, HouseDoor(tuple(dd['rooms']), opening)
+
+
+def _house_from_dict(d: Any, vocabulary: Vocabulary = PAPER) -> House:
+    check_against_schema(d, 'house_layout')
+    rooms, names = _house_rooms(d, vocabulary)
+    ids = {rd['id']: i for i, rd in enumerate(d['rooms'])}
+    doors, named = [], [[] for _ in rooms]
+    for j, dd in enumerate(d['doors']):
+        members, door = _house_door(dd, f'doors[{j}]', ids, rooms, names)
+        for i in members:
+            named[i].append((f'doors[{j}]', door.opening))
+        doors.append(door)
+    out = {}
+    for i, (room, rd) in enumerate(zip(rooms, d['rooms'], strict=True)):
+        room = Room(room.room_type, room.floor, room.wall_height,
+                    tuple(o for _, o in named[i]), room.windows)
+        _check_openings(room, f'rooms[{i}]', named[i] + [
+            (f'rooms[{i}].windows[{k}]', w) for k, w in enumerate(room.windows)])
+        out[rd['id']] = room
+    house = House(out, tuple(doors),
+                  {'request_id': d['request_id']} if 'request_id' in d else {})
+    if not house.entrances:
+        raise SceneValidationError('doors has no entrance: a house needs a door that names '
+                                   'one room and leads outside', 'doors')
+    reached = set(house.reachable())
+    for i, rid in enumerate(out):
+        if rid not in reached:
+            raise SceneValidationError(f'{names[i]} cannot be reached from an entrance through '
+                                       'the doors', f'rooms[{i}]')
+    return house
+
+
+def parse_house_layout(text_or_dict: Any, vocabulary: Vocabulary = PAPER) -> House:
+    """A house layout (JSON or YAML text, bytes or dict) as a validated House
+    (``msg_schemas/house_layout.schema.json``; see ``house``)."""
+    d = _load(text_or_dict, yaml_ok=True)
+    try:
+        return _house_from_dict(d, vocabulary)
+    except SceneValidationError as e:
+        if looks_like_python_dict(text_or_dict):
+            raise SceneValidationError(f'{e}; {PYTHON_DICT_HINT}', e.path) from None
+        raise
+
+
+def is_house_layout(d: Any) -> bool:
+    """Whether a payload (as ``read_payload`` gives it) is a house layout rather than a
+    room layout: a mapping of rooms."""
+    return isinstance(d, Mapping) and 'rooms' in d
 
 
 def _scene_from_dict(d: Any, models: catalog.Catalog | None = None,

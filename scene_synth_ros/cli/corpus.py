@@ -1,5 +1,6 @@
 """``scene-synth corpus``, ``corpus-stats`` and ``corpus-calibrate``: the procedural rooms
-the networks train on, written as JSON, compared with the paper's table, and calibrated."""
+the networks train on, written as JSON, compared with the paper's table, and calibrated; and
+``house-plans``: procedural empty houses."""
 from __future__ import annotations
 
 import json
@@ -21,6 +22,18 @@ def add_parser(sub) -> None:
     c.add_argument('--quiet', action='store_true', help='no progress bar')
     c.set_defaults(func=cmd_corpus)
 
+    c = sub.add_parser('house-plans', help='procedural house plans: empty house layouts '
+                       '(msg_schemas/house_layout.schema.json) of rooms along a hallway')
+    c.add_argument('-n', type=int, default=10, help='how many plans')
+    c.add_argument('--out', required=True, help='output directory (house_00000.json, ...)')
+    c.add_argument('--seed', type=int, default=0, help='plan seed: the same seed gives the '
+                   'same plans')
+    c.add_argument('--rooms', help='the room types of every plan, comma-separated (e.g. '
+                   'living,kitchen,bedroom,bathroom; default: drawn from the programmes of '
+                   'corpus/house_plan.py)')
+    c.add_argument('--quiet', action='store_true', help='print nothing')
+    c.set_defaults(func=cmd_house_plans)
+
     c = sub.add_parser('corpus-stats', help="compare the corpus with the paper's table")
     c.add_argument('--room-type', default='all', help=f'{"|".join(CORPUS_ROOM_TYPES)}|all')
     c.add_argument('-n', type=int, default=2000, help='rooms per type to generate')
@@ -41,6 +54,32 @@ def add_parser(sub) -> None:
                    'on (the training corpus is seed 0)')
     c.add_argument('--workers', type=int, default=None, help='processes (default: all cores)')
     c.set_defaults(func=cmd_corpus_calibrate)
+
+
+def cmd_house_plans(args) -> int:
+    from ..corpus.house_plan import PlanConfig, house_plan
+    from ..files import write_atomic
+    from ..schema import format_json
+    if args.n < 1:
+        raise UserError(f'-n {args.n}: expected 1 or more plans')
+    rooms = None
+    if args.rooms:
+        rooms = tuple(r.strip() for r in args.rooms.split(','))
+        unknown = [r for r in rooms if r not in CORPUS_ROOM_TYPES or r == 'hallway']
+        if unknown:
+            raise UserError(f'--rooms names {unknown[0][:80]!r}: expected room types among '
+                            f'{", ".join(t for t in CORPUS_ROOM_TYPES if t != "hallway")} '
+                            '(the hallway is always there)')
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    for i in range(args.n):
+        house = house_plan(args.seed, i, PlanConfig(rooms))
+        write_atomic(out / f'house_{i:05d}.json', format_json(house.to_dict()) + '\n')
+        if not args.quiet:
+            kinds = ', '.join(r.room_type for r in house.rooms.values())
+            print(f'house_{i:05d}.json: {len(house.rooms)} rooms, {house.area:.0f} m² '
+                  f'({kinds})')
+    return 0
 
 
 def cmd_corpus(args) -> int:

@@ -8,7 +8,34 @@ import math
 import numpy as np
 
 from ..categories import ROOM_SIZE_CAP, paper_spec
+from ..home_tables import ROOM_SIZES, SIZE_QUANTILES
 from ..scene import Opening, Room
+from ..thresholds import MAX_ROOM_SIDE
+
+# A room type whose real rooms (``home_tables.ROOM_SIZES``) number at least this many is drawn
+# at their sizes (``shell_area``: its floor area from theirs, up to ``thresholds.MAX_ROOM_SIDE``);
+# the others keep the sizes of ``SHELLS`` within their type's square (too few real rooms).
+MIN_REAL_ROOMS = 100
+
+
+def real_sizes(room_type: str):
+    """The real rooms' sizes a corpus of ``room_type`` draws from, or None."""
+    sizes = ROOM_SIZES.get(room_type)
+    return sizes if sizes is not None and sizes.rooms >= MIN_REAL_ROOMS else None
+
+
+def shell_area(room_type: str, rng: np.random.Generator) -> float:
+    """A floor area (m²) drawn as the type's real rooms have them (their quantiles,
+    interpolated), or uniformly within ``SHELLS``' range."""
+    sizes = real_sizes(room_type)
+    if sizes is None:
+        return float(rng.uniform(*SHELLS[room_type].area))
+    return float(np.interp(rng.random(), SIZE_QUANTILES, sizes.area))
+
+
+def shell_cap(room_type: str) -> float:
+    """The longest side a corpus shell of ``room_type`` may have (m)."""
+    return MAX_ROOM_SIDE if real_sizes(room_type) is not None else ROOM_SIZE_CAP[room_type]
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,80 @@
+"""A house: rooms that share walls, joined by doors, with one or more entrances.
+
+Each room is a ``scene.Room`` of its own (its floor, wall height and windows, and the doors on
+its walls); a door between two rooms is in both rooms' ``doors``, an entrance (a door to the
+outside) in its one room's. ``schema.parse_house_layout`` makes a House from a house layout
+(``msg_schemas/house_layout.schema.json``) after checking that the rooms do not overlap,
+that each door lies on a wall its rooms share (an entrance on an outside wall) and that every
+room can be reached from an entrance; ``House.to_dict`` writes the layout back.
+"""
+from __future__ import annotations
+
+from collections import deque
+from dataclasses import dataclass, field
+from typing import Any
+
+from .scene import Opening, Room
+
+
+@dataclass(frozen=True)
+class HouseDoor:
+    """A door of a house: the ids of the two rooms it joins, or of the one room it leads
+    out of (an entrance)."""
+
+    rooms: tuple[str, ...]
+    opening: Opening
+
+    @property
+    def entrance(self) -> bool:
+        return len(self.rooms) == 1
+
+    def to_dict(self) -> dict[str, Any]:
+        o = self.opening
+        return {'rooms': list(self.rooms), 'position': [o.position[0], o.position[1]],
+                'width': o.width, 'height': o.height}
+
+
+@dataclass
+class House:
+    """Rooms by id, in the layout's order, and the doors that join them."""
+
+    rooms: dict[str, Room]
+    doors: tuple[HouseDoor, ...] = ()
+    meta: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def entrances(self) -> tuple[HouseDoor, ...]:
+        return tuple(d for d in self.doors if d.entrance)
+
+    def neighbours(self, room_id: str) -> list[str]:
+        """The rooms a door of ``room_id`` leads into, in the doors' order."""
+        return [r for d in self.doors if room_id in d.rooms and not d.entrance
+                for r in d.rooms if r != room_id]
+
+    def reachable(self) -> list[str]:
+        """The rooms reached from the entrances through the doors, in the order reached."""
+        seen = list(dict.fromkeys(d.rooms[0] for d in self.entrances))
+        queue = deque(seen)
+        while queue:
+            for other in self.neighbours(queue.popleft()):
+                if other not in seen:
+                    seen.append(other)
+                    queue.append(other)
+        return seen
+
+    @property
+    def area(self) -> float:
+        return sum(room.area for room in self.rooms.values())
+
+    def to_dict(self) -> dict[str, Any]:
+        """The house layout (``msg_schemas/house_layout.schema.json``); every room carries
+        its own wall height."""
+        rooms = []
+        for rid, room in self.rooms.items():
+            d = room.to_dict()
+            rooms.append({'id': rid, 'room_type': d['room_type'], 'floor': d['floor'],
+                          'wall_height': d['wall_height'], 'windows': d['windows']})
+        out: dict[str, Any] = {'rooms': rooms, 'doors': [d.to_dict() for d in self.doors]}
+        if 'request_id' in self.meta:
+            out['request_id'] = self.meta['request_id']
+        return out
