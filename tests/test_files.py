@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import os
+from pathlib import Path
 from xml.etree import ElementTree as ET
 
 import pytest
@@ -70,9 +71,11 @@ def test_files_written_together_arrive_in_the_order_given(tmp_path, monkeypatch)
     assert sorted(p.name for p in tmp_path.iterdir()) == ['m.mtl', 'm.obj']
 
 
-def test_read_json_names_the_file_in_one_sentence(tmp_path):
+def test_read_json_names_the_file_in_one_sentence(tmp_path, monkeypatch):
     class Bad(ValueError):
         pass
+    monkeypatch.chdir(tmp_path)         # short paths, whatever the temporary folder's is
+    tmp_path = Path('.')
     (tmp_path / 'ok.json').write_text('{"a": [1, 2]}')
     assert read_json(tmp_path / 'ok.json', 'the table', Bad) == {'a': [1, 2]}
     with pytest.raises(Bad, match=r"^the table '.*gone.json' does not exist \(build one\)$"):

@@ -93,7 +93,7 @@ class Started:
         if self.proc.poll() is None:
             os.killpg(self.proc.pid, signal.SIGINT)
         try:
-            return self.proc.wait(30)
+            return self.proc.wait(60)
         finally:
             if self.proc.poll() is None:
                 os.killpg(self.proc.pid, signal.SIGKILL)
@@ -151,9 +151,10 @@ def test_the_readme_quick_start_with_the_real_tools(launched):
     assert 'Goal finished with status: SUCCEEDED' in goal, goal
     scene = parse_scene(echo.rsplit('---', 1)[0])
     assert scene.room.room_type == 'bedroom' and len(scene.objects) >= 3
-    # One feedback per object placed, counting up to the room's objects.
+    # One feedback per object placed, counting up. The last ones may not be printed: the
+    # result comes on a channel of its own and can overtake them, and the tool ends with it.
     counts = [int(n) for n in re.findall(r'^objects: (\d+)$', goal, re.M)]
-    assert counts == list(range(1, len(counts) + 1)) and len(counts) >= len(scene.objects)
+    assert counts == list(range(1, len(counts) + 1)) and 1 <= len(counts), goal
     assert 'success=True' in call and "category='plant'" in call, call
     # The launch said in one line that RViz is missing, and the node served on.
     assert launched.log().count('RViz (the package rviz2) is not installed') == 1
@@ -239,7 +240,14 @@ def test_a_lifecycle_manager_or_ros2_lifecycle_drives_the_node(tmp_path):
             assert time.monotonic() < deadline, launch.log()
             time.sleep(0.5)
         assert 'nav2_lifecycle_manager is not installed' in launch.log()
-        assert 'Transitioning successful' in _sh(f'ros2 lifecycle set {node} configure', env)
+        # `set` looks the node up in the graph the ros2 daemon has discovered, which can lag
+        # behind the service `get` called directly
+        while (done := subprocess.run(['ros2', 'lifecycle', 'set', node, 'configure'],
+                                      env=env, capture_output=True, text=True)
+               ).stderr.strip() == 'Node not found':
+            assert time.monotonic() < deadline, launch.log()
+            time.sleep(0.5)
+        assert 'Transitioning successful' in done.stdout, (done.stdout, done.stderr)
         assert _sh(f'ros2 lifecycle get {node}', env).startswith('inactive')
         refused = _sh(f'ros2 service call {node}/clear_objects '
                       'scene_synth_msgs/srv/ClearObjects', env)

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import math
 
 import numpy as np
+from shapely.geometry import LineString, Polygon
 
 from ..categories import paper_spec
 from ..house import House, HouseDoor
@@ -160,7 +161,6 @@ def _attempt(rng: np.random.Generator, config: PlanConfig) -> House | None:
 
 def _outside(room: Room, rid: str, floors: dict) -> list[int]:
     """The walls of ``room`` with no other room behind them anywhere along them."""
-    from shapely.geometry import LineString, Polygon
     others = [Polygon(f) for r, f in floors.items() if r != rid]
     out = []
     for wall in room.walls:
