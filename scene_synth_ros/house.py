@@ -19,10 +19,17 @@ from .scene import Opening, Room
 @dataclass(frozen=True)
 class HouseDoor:
     """A door of a house: the ids of the two rooms it joins, or of the one room it leads
-    out of (an entrance)."""
+    out of (an entrance); ``opening`` as the layout gives it, and ``openings`` the door as
+    each of its rooms has it, on that room's wall (a wall has a thickness: two rooms' walls
+    back to back may stand apart, ``thresholds.MAX_WALL_THICKNESS``)."""
 
     rooms: tuple[str, ...]
     opening: Opening
+    openings: dict[str, Opening] = field(default_factory=dict, compare=False)
+
+    def __post_init__(self):
+        if not self.openings:
+            object.__setattr__(self, 'openings', {r: self.opening for r in self.rooms})
 
     @property
     def entrance(self) -> bool:

@@ -50,6 +50,7 @@ from .render import RoomDoesNotFit, room_frame_box
 from .scene import DEFAULT_WALL_HEIGHT, Opening, PlacedObject, Room, Scene, ccw, fresh_id
 from .thresholds import (
     CENTRE_OFF_FLOOR,
+    MAX_WALL_THICKNESS,
     MIN_FLOOR_AREA,
     MIN_VERTEX_SPACING,
     OPENING_TOLERANCE,
@@ -596,11 +597,28 @@ def _house_rooms(d: dict[str, Any], vocabulary: Vocabulary) -> tuple[list[Room],
     return rooms, names
 
 
+def _across(room: Room, opening: Opening, wall) -> Opening | None:
+    """``opening``, which lies on ``wall`` of another room, as it opens into ``room``: on a
+    wall of ``room`` back to back with ``wall`` at most ``MAX_WALL_THICKNESS`` behind it,
+    moved onto it (None: ``room`` has no such wall under the whole opening)."""
+    for other in room.walls:
+        if float(np.dot(other.direction, wall.direction)) > -0.9998:     # within 1 degree
+            continue
+        depth = float(np.dot(np.subtract(other.start, wall.start), -wall.normal))
+        if not -OPENING_TOLERANCE <= depth <= MAX_WALL_THICKNESS:
+            continue
+        x, y = np.asarray(opening.position) - wall.normal * depth
+        moved = Opening('door', (float(x), float(y)), opening.width, opening.height)
+        if room.wall_of(moved, OPENING_TOLERANCE) is not None:
+            return moved
+    return None
+
+
 def _house_door(dd: dict[str, Any], path: str, ids: dict[str, int], rooms: list[Room],
-                names: list[str]) -> tuple[list[int], HouseDoor]:
+                names: list[str]) -> HouseDoor:
     """A (schema-valid) door of a house layout, after the checks that the rooms it names
-    exist and share the wall it lies on (an entrance: lies on an outside wall); the indices
-    of its rooms and the door."""
+    exist and share the wall it lies on (back to back within a wall's thickness), and that
+    an entrance lies on an outside wall; each room's opening is on that room's wall."""
     members = []
     for k, rid in enumerate(dd['rooms']):
         if rid not in ids:
@@ -613,20 +631,31 @@ def _house_door(dd: dict[str, Any], path: str, ids: dict[str, int], rooms: list[
                                    'door joins two rooms, or leads out of one', path)
     opening = Opening('door', (float(dd['position'][0]), float(dd['position'][1])),
                       float(dd['width']), float(dd['height']))
-    on = [i for i, room in enumerate(rooms) if room.wall_of(opening, OPENING_TOLERANCE)]
-    for i in members:
-        if i not in on:
+    walls = {i: w for i, room in enumerate(rooms)
+             if (w := room.wall_of(opening, OPENING_TOLERANCE)) is not None}
+    home = next((i for i in members if i in walls), None)
+    if home is None:
+        elsewhere = f': it is on a wall of {names[next(iter(walls))]}' if walls else ''
+        raise SceneValidationError(f'{path} is not on a wall of {names[members[0]]}{elsewhere}',
+                                   path)
+    # every room behind the door's wall, through a wall's thickness at most
+    behind = {i: (opening if i in walls else _across(room, opening, walls[home]))
+              for i, room in enumerate(rooms) if i != home}
+    behind = {i: o for i, o in behind.items() if o is not None}
+    if len(members) == 2:
+        other = next(i for i in members if i != home)
+        if other not in behind:
             raise SceneValidationError(
-                f'{path} is not on a wall of {names[i]}'
-                + (f': it is on a wall of {names[on[0]]}' if on else '')
-                + (', so those rooms do not share the wall it is on' if len(members) == 2
-                   else ''), path)
-    others = [i for i in on if i not in members]
-    if len(members) == 1 and others:
+                f'{path} is on a wall of {names[home]} that {names[other]} does not share: '
+                f'the door must lie on the wall between them', path)
+        return HouseDoor(tuple(dd['rooms']), opening,
+                         {rid: opening if ids[rid] == home else behind[ids[rid]]
+                          for rid in dd['rooms']})
+    if behind:
         raise SceneValidationError(
-            f'{path} leads outside from {names[members[0]]} but lies on the wall it shares '
-            f'with {names[others[0]]}: name both rooms for a door between them', path)
-    return members, HouseDoor(tuple(dd['rooms']), opening)
+            f'{path} leads outside from {names[home]} but lies on the wall it shares '
+            f'with {names[next(iter(behind))]}: name both rooms for a door between them', path)
+    return HouseDoor(tuple(dd['rooms']), opening, {dd['rooms'][0]: opening})
 
 
 def _house_from_dict(d: Any, vocabulary: Vocabulary = PAPER) -> House:
@@ -635,9 +664,9 @@ def _house_from_dict(d: Any, vocabulary: Vocabulary = PAPER) -> House:
     ids = {rd['id']: i for i, rd in enumerate(d['rooms'])}
     doors, named = [], [[] for _ in rooms]
     for j, dd in enumerate(d['doors']):
-        members, door = _house_door(dd, f'doors[{j}]', ids, rooms, names)
-        for i in members:
-            named[i].append((f'doors[{j}]', door.opening))
+        door = _house_door(dd, f'doors[{j}]', ids, rooms, names)
+        for rid, opening in door.openings.items():
+            named[ids[rid]].append((f'doors[{j}]', opening))
         doors.append(door)
     out = {}
     for i, (room, rd) in enumerate(zip(rooms, d['rooms'], strict=True)):

@@ -35,6 +35,8 @@ MAX_ROOM_SIDE = 16.0
 MIN_VERTEX_SPACING = 1e-3       # m: consecutive vertices closer than this repeat each other
 WALL_HEIGHT_RANGE = (1.8, 6.0)  # m, inclusive (also in room_layout.schema.json)
 OPENING_TOLERANCE = 0.01        # m: an opening's centre and ends may miss its wall by this
+MAX_WALL_THICKNESS = 0.5        # m: a house's two rooms whose walls stand back to back this
+                                # close share that wall (real walls have a thickness)
 CENTRE_OFF_FLOOR = 0.01         # m: an object's centre may lie this far outside the floor
 SIZE_SLACK = 0.5                # a size within its category's ranges widened by half
 

@@ -67,9 +67,10 @@ def _broken(change) -> dict:
     (lambda d: d['doors'][1]['rooms'].__setitem__(1, 'garage'), 'doors[1].rooms[1]',
      'not the id of a room'),
     (lambda d: d['doors'][1].update(position=[5, 1.4]), 'doors[1]',
-     "not on a wall of rooms[1] ('bed')"),
+     "on a wall of rooms[0] ('hall') that rooms[1] ('bed') does not share"),
     (lambda d: d['doors'][2].update(rooms=['kitchen', 'bed']), 'doors[2]',
-     "do not share the wall"),
+     "does not share"),
+    (lambda d: d['doors'][1].update(position=[2, 7]), 'doors[1]', "not on a wall of rooms[0]"),
     (lambda d: d['doors'][0].update(rooms=['hall'], position=[2, 1.4]), 'doors[0]',
      'shares with'),
     (lambda d: d['doors'][1].update(rooms=['hall', 'hall']), 'doors[1]', 'twice'),
@@ -132,3 +133,27 @@ def test_the_command_writes_house_plans_and_refuses_an_unknown_room_type(cli, tm
     r = cli('house-plans', '-n', '1', '--rooms', 'living,garage', '--out', str(tmp_path),
             ok=False)
     assert r.returncode == 2 and "'garage'" in r.stderr and r.stderr.count('\n') == 1, r
+
+
+def test_rooms_whose_walls_stand_back_to_back_a_wall_apart_share_the_door_between_them():
+    """Real walls have a thickness: the bedroom's floor ends 0.2 m above the hallway's, and
+    the door given on the hallway's wall is the bedroom's door on its own wall."""
+    d = copy.deepcopy(HOUSE)
+    d['rooms'][1]['floor'] = [[0, 1.6], [4, 1.6], [4, 5], [0, 5]]
+    house = parse_house_layout(d)
+    door = house.doors[1]
+    assert door.openings['hall'].position == (2.0, 1.4)
+    assert door.openings['bed'].position == pytest.approx((2.0, 1.6))
+    assert house.rooms['bed'].doors[0].position == pytest.approx((2.0, 1.6))
+    assert parse_house_layout(house.to_dict()).to_dict() == house.to_dict()
+    d['rooms'][1]['floor'] = [[0, 2.0], [4, 2.0], [4, 5], [0, 5]]       # 0.6 m: no wall
+    with pytest.raises(SceneValidationError) as e:
+        parse_house_layout(d)
+    assert "rooms[1] ('bed') does not share" in one_sentence(e.value, 'doors[1]')
+    # an entrance on a wall with a room behind it, a wall's thickness away, leads into it
+    d = copy.deepcopy(HOUSE)
+    d['rooms'][1]['floor'] = [[0, 1.6], [4, 1.6], [4, 5], [0, 5]]
+    d['doors'][1]['rooms'] = ['hall']
+    with pytest.raises(SceneValidationError) as e:
+        parse_house_layout(d)
+    assert 'shares with rooms[1]' in one_sentence(e.value, 'doors[1]')
