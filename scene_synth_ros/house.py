@@ -13,7 +13,28 @@ from collections import deque
 from dataclasses import dataclass, field
 from typing import Any
 
-from .scene import Opening, Room
+import numpy as np
+
+from .scene import Opening, Room, Wall
+from .thresholds import MAX_WALL_THICKNESS, OPENING_TOLERANCE
+
+
+def across(room: Room, opening: Opening, wall: Wall) -> Opening | None:
+    """``opening``, which lies on ``wall`` of another room, as it opens into ``room``: on a
+    wall of ``room`` back to back with ``wall`` at most ``MAX_WALL_THICKNESS`` behind it,
+    moved onto it (None: ``room`` has no such wall under the whole opening)."""
+    for other in room.walls:
+        if float(np.dot(other.direction, wall.direction)) > -0.9998:     # within 1 degree
+            continue
+        depth = float(np.dot(np.subtract(other.start, wall.start), -wall.normal))
+        if not -OPENING_TOLERANCE <= depth <= MAX_WALL_THICKNESS:
+            continue
+        x, y = np.asarray(opening.position) - wall.normal * depth
+        moved = Opening(opening.kind, (float(x), float(y)), opening.width, opening.height,
+                        opening.sill)
+        if room.wall_of(moved, OPENING_TOLERANCE) is not None:
+            return moved
+    return None
 
 
 @dataclass(frozen=True)

@@ -43,14 +43,13 @@ from . import catalog
 from .categories import CATEGORIES, PAPER, RoomTypeSpec, Vocabulary
 from .errors import SceneSynthError, UnknownRoomType, number, quoted, with_article
 from .files import write_atomic
-from .house import House, HouseDoor
+from .house import House, HouseDoor, across
 from .limits import LimitExceeded, YamlError, check_tree, join, loads, loads_yaml
 from .paths import schema_dir
 from .render import RoomDoesNotFit, room_frame_box
 from .scene import DEFAULT_WALL_HEIGHT, Opening, PlacedObject, Room, Scene, ccw, fresh_id
 from .thresholds import (
     CENTRE_OFF_FLOOR,
-    MAX_WALL_THICKNESS,
     MIN_FLOOR_AREA,
     MIN_VERTEX_SPACING,
     OPENING_TOLERANCE,
@@ -597,23 +596,6 @@ def _house_rooms(d: dict[str, Any], vocabulary: Vocabulary) -> tuple[list[Room],
     return rooms, names
 
 
-def _across(room: Room, opening: Opening, wall) -> Opening | None:
-    """``opening``, which lies on ``wall`` of another room, as it opens into ``room``: on a
-    wall of ``room`` back to back with ``wall`` at most ``MAX_WALL_THICKNESS`` behind it,
-    moved onto it (None: ``room`` has no such wall under the whole opening)."""
-    for other in room.walls:
-        if float(np.dot(other.direction, wall.direction)) > -0.9998:     # within 1 degree
-            continue
-        depth = float(np.dot(np.subtract(other.start, wall.start), -wall.normal))
-        if not -OPENING_TOLERANCE <= depth <= MAX_WALL_THICKNESS:
-            continue
-        x, y = np.asarray(opening.position) - wall.normal * depth
-        moved = Opening('door', (float(x), float(y)), opening.width, opening.height)
-        if room.wall_of(moved, OPENING_TOLERANCE) is not None:
-            return moved
-    return None
-
-
 def _house_door(dd: dict[str, Any], path: str, ids: dict[str, int], rooms: list[Room],
                 names: list[str]) -> HouseDoor:
     """A (schema-valid) door of a house layout, after the checks that the rooms it names
@@ -639,7 +621,7 @@ def _house_door(dd: dict[str, Any], path: str, ids: dict[str, int], rooms: list[
         raise SceneValidationError(f'{path} is not on a wall of {names[members[0]]}{elsewhere}',
                                    path)
     # every room behind the door's wall, through a wall's thickness at most
-    behind = {i: (opening if i in walls else _across(room, opening, walls[home]))
+    behind = {i: (opening if i in walls else across(room, opening, walls[home]))
               for i, room in enumerate(rooms) if i != home}
     behind = {i: o for i, o in behind.items() if o is not None}
     if len(members) == 2:

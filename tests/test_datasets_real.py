@@ -44,7 +44,8 @@ def imported(tmp_path_factory):
     out = {}
     for fmt in FORMATS:
         folder = tmp_path_factory.mktemp(fmt)
-        out[fmt] = (import_dataset(fmt, [REAL / fmt], out=folder, keep_scenes=True), folder)
+        out[fmt] = (import_dataset(fmt, [REAL / fmt], out=folder, keep_scenes=True,
+                                   layouts=True), folder)
     return out
 
 
@@ -207,3 +208,29 @@ def test_every_real_room_of_a_known_type_is_accepted_and_furnished_validly(impor
         furnished += holds
     # a 1.7 m wide bedroom may rightly stay empty; nearly every room gets furniture
     assert furnished >= 0.95 * len(rooms)
+
+
+@pytest.mark.parametrize('fmt', FORMATS)
+def test_each_real_house_is_written_back_as_an_empty_house_layout(imported, fmt):
+    """``scene-synth import ... --layouts``: a house's kept rooms, in its frame, joined by
+    their doors (back to back through the data's thick walls), as a valid house layout;
+    a room no door reaches is left out with a report line."""
+    import json
+
+    from scene_synth_ros.schema import parse_house_layout
+    result, folder = imported[fmt]
+    houses = {p.stem: json.loads(p.read_text()) for p in (folder / 'houses').glob('*.json')}
+    assert houses == result.houses and houses
+    floors = sorted(str(scene['room']['floor']) for scene in result.scenes.values())
+    in_houses = []
+    for layout in houses.values():
+        house = parse_house_layout(layout)
+        assert house.entrances and set(house.reachable()) == set(house.rooms)
+        in_houses += [str([list(p) for p in r.floor]) for r in house.rooms.values()]
+    left_out = [line for line in result.report.lines if line.what == 'layout']
+    assert len(in_houses) + len(left_out) == len(floors)
+    if fmt == 'procthor':                # one-room houses, their doors lead outside
+        assert len(houses) == len(result.scenes) and not left_out
+    if fmt == '3dfront':                 # rooms of one house open onto each other
+        assert any(len(d['rooms']) == 2 for layout in houses.values()
+                   for d in layout['doors'])

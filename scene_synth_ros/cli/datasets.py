@@ -2,6 +2,8 @@
 JSON, one room per scene, with the import report and the data-set description."""
 from __future__ import annotations
 
+from pathlib import Path
+
 from ..datasets.config import FORMATS, ImportConfig
 from ..thresholds import MAX_ROOM_SIDE
 
@@ -49,6 +51,9 @@ def add_parser(sub) -> None:
     c.add_argument('--floor-tolerance', type=float, default=d.floor_tolerance,
                    help='metres an object\'s centre may lie outside the floor (default '
                    f'{d.floor_tolerance:g})')
+    c.add_argument('--layouts', action='store_true', help="also write each house's kept "
+                   'rooms as an empty house layout (msg_schemas/house_layout.schema.json) to '
+                   'OUT/houses/, to furnish real floor plans again')
     c.add_argument('--quiet', action='store_true', help='print only the summary line')
     c.set_defaults(func=cmd_import)
 
@@ -70,10 +75,13 @@ def cmd_import(args) -> int:
                           floor_tolerance=args.floor_tolerance,
                           room_types=load_room_types(args.format, args.room_types))
     result = import_dataset(args.format, args.inputs, out=args.out, config=config,
-                            table=args.asset_sizes or args.category_map, models=args.models)
+                            table=args.asset_sizes or args.category_map, models=args.models,
+                            layouts=args.layouts)
     summary = result.report.summary()
     print(summary.splitlines()[0] if args.quiet else summary)
     if not args.quiet:
         print(f'wrote {result.report.totals()["rooms_kept"]} scene(s), report.txt, report.json '
               f'and dataset.yaml to {args.out}')
+        if args.layouts:
+            print(f'wrote {len(result.houses)} house layout(s) to {Path(args.out) / "houses"}')
     return 0

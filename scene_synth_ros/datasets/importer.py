@@ -15,16 +15,19 @@ from pathlib import Path
 import re
 from typing import Any, Iterator, Sequence
 
+from ..categories import PAPER
 from ..errors import DatasetError
 from ..files import write_atomic
-from ..scene import Scene
-from ..schema import format_json
+from ..scene import Room, Scene
+from ..schema import SceneValidationError, format_json, parse_house_layout
 from . import allowance, description, front3d, procthor, suncg
 from .assemble import assemble
 from .config import FORMATS, ImportConfig, load_room_types
+from .houses import house_of
 from .models import AssetBoxes, ModelBoxes, ModelCategories
 from .records import RawRoom
 from .report import ImportReport
+from .training import room_type_specs
 
 FILE_PATTERNS = {
     '3dfront': ('*.json',),
@@ -48,6 +51,7 @@ class ImportResult:
     scenes: dict[str, dict[str, Any]] = field(default_factory=dict)
     report: ImportReport | None = None
     description: dict[str, Any] | None = None
+    houses: dict[str, dict[str, Any]] = field(default_factory=dict)   # name -> house layout
 
 
 def find_files(fmt: str, inputs: Sequence[str | Path]) -> list[Path]:
@@ -88,11 +92,13 @@ def find_table(fmt: str, given: str | Path | None, files: list[Path]) -> Path:
 def import_dataset(fmt: str, inputs: Sequence[str | Path], out: str | Path | None = None,
                    config: ImportConfig | None = None, table: str | Path | None = None,
                    models: str | Path | None = None,
-                   keep_scenes: bool | None = None) -> ImportResult:
+                   keep_scenes: bool | None = None, layouts: bool = False) -> ImportResult:
     """Import the ``fmt`` files of ``inputs`` (see the module docstring). With ``out``, the
     scenes are written there as they come, with ``report.txt``/``report.json`` and
     ``dataset.yaml`` at the end; ``result.scenes`` holds them when ``keep_scenes`` (by
-    default only without ``out``: a large data set need not fit in memory)."""
+    default only without ``out``: a large data set need not fit in memory). With
+    ``layouts``, each house's kept rooms are also an empty house layout (``houses.py``),
+    in ``result.houses`` and, with ``out``, written to ``out/houses/``."""
     if fmt not in FORMATS:
         raise DatasetError(f'unknown format {fmt!r}; expected one of {", ".join(FORMATS)}')
     config = config or ImportConfig()
@@ -105,6 +111,7 @@ def import_dataset(fmt: str, inputs: Sequence[str | Path], out: str | Path | Non
     describer = description.Describer(fmt, config)
     deriver = allowance.Deriver()
     names: set[str] = set()
+    rooms: dict[str, dict[str, Room]] = {}       # house -> room -> its shell (``layouts``)
     if out is not None:
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
@@ -120,11 +127,48 @@ def import_dataset(fmt: str, inputs: Sequence[str | Path], out: str | Path | Non
             _write_scene(out, name, scene)
         if keep:
             result.scenes[name] = scene
+        if layouts:
+            rooms.setdefault(_safe(raw.house_id), {})[_safe(raw.room_id)] = \
+                Room.from_dict(scene['room'])
     result.description = {**describer.result(), 'allowance': deriver.result().to_dict()}
+    if layouts:
+        _houses(fmt, rooms, result, out, report)
     if out is not None:
         report.write(out)
         description.write(result.description, out / description.FILE_NAME)
     return result
+
+
+def _houses(fmt: str, rooms: dict[str, dict[str, Room]], result: ImportResult,
+            out: Path | None, report: ImportReport) -> None:
+    """Each house's kept rooms as a house layout, checked as a layout sent to the node
+    would be; what cannot be one is a report line."""
+    vocabulary = PAPER
+    if not {r.room_type for kept in rooms.values() for r in kept.values()} <= set(
+            PAPER.room_types):        # a data set's own room types: as its rooms know them
+        try:
+            vocabulary = PAPER.with_specs(
+                room_type_specs(description.check(result.description)).values())
+        except DatasetError as e:
+            report.add('layout', 'no house layout', 'every house', str(e))
+            return
+    for house_id, kept in rooms.items():
+        house, notes = house_of(kept, house_id)
+        for note in notes:
+            report.add('layout', 'left out of its house layout', f'house {house_id}', note)
+        if house is None:
+            continue
+        layout = house.to_dict()
+        try:
+            parse_house_layout(layout, vocabulary)
+        except SceneValidationError as e:
+            report.add('layout', 'no house layout', f'house {house_id}', str(e))
+            continue
+        name = f'{fmt}_{house_id}'
+        result.houses[name] = layout
+        if out is not None:
+            (out / 'houses').mkdir(exist_ok=True)
+            write_atomic(out / 'houses' / f'{name}.json', format_json(layout) + '\n')
 
 
 def _rooms(fmt: str, files: list[Path], table: Path, models, config: ImportConfig,
