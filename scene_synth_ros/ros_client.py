@@ -156,7 +156,7 @@ class SceneSynthClient:
         """(scene dict, MarkerArray, PoseArray) of a room published after ``after``
         (from ``counts``): waits for all its topics (its map too, ``latest('map')``)."""
         self.spin_until(lambda: all(self._counts[t] > after[t] for t in TOPICS), timeout,
-                        'room (scene, markers and poses)')
+                        'room (scene, markers, poses and map)')
         return (json.loads(self.received['scene'][-1][2].data),
                 self.received['markers'][-1][2], self.received['poses'][-1][2])
 

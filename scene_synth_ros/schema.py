@@ -50,6 +50,7 @@ from .render import RoomDoesNotFit, room_frame_box
 from .scene import DEFAULT_WALL_HEIGHT, Opening, PlacedObject, Room, Scene, ccw, fresh_id
 from .thresholds import (
     CENTRE_OFF_FLOOR,
+    MAX_WALL_THICKNESS,
     MIN_FLOOR_AREA,
     MIN_VERTEX_SPACING,
     OPENING_TOLERANCE,
@@ -60,7 +61,7 @@ __all__ = [
     'SceneValidationError', 'parse_room_layout', 'parse_scene', 'load_scene', 'dump_scene',
     'save_scene', 'validate_scene_dict', 'validate_layout_dict', 'SCHEMA_IDS',
     'plain_json', 'check_against_schema', 'check_floor', 'format_json', 'read_payload',
-    'parse_house_layout', 'is_house_layout',
+    'parse_house_layout',
 ]
 
 _BASE = 'https://scene-synth-ros.invalid/msg_schemas/'
@@ -353,10 +354,10 @@ def _check_fits(room: Room, prefix: str, vocabulary: Vocabulary) -> None:
 
 
 def _check_openings(room: Room, prefix: str,
-                    named: list[tuple[str, Opening]] | None = None) -> None:
+                    named: list[tuple[str, Opening]] | None = None, owner: str = '') -> None:
     """Each opening of ``room`` within the wall height, on one wall, not overlapping another;
     ``named``: (path, opening) of each, where the paths are not the room's own (a house's
-    doors)."""
+    doors), and ``owner`` the room's name in the sentences then."""
     placed = []       # (path, wall index, start offset, end offset) of checked openings
     if named is None:
         named = ([(_join(_join(prefix, 'doors'), i), o) for i, o in enumerate(room.doors)]
@@ -367,9 +368,10 @@ def _check_openings(room: Room, prefix: str,
         if top > room.wall_height + 1e-9:
             what = (f'sill {number(op.sill)} m + height {number(op.height)} m'
                     if op.kind == 'window' else f'height {number(op.height)} m')
+            of = f' of {owner}' if owner else ''
             raise SceneValidationError(
                 f'{path} reaches {number(top)} m ({what}), above the {number(room.wall_height)} m '
-                f'wall height', path)
+                f'wall height{of}', path)
         wall = room.wall_of(op, tol=OPENING_TOLERANCE)
         if wall is None:
             near = sorted(room.walls, key=lambda w: w.distance_to(op.position))
@@ -569,105 +571,135 @@ def _layout_to_scene(d: Any, models: catalog.Catalog | None = None,
 HOUSE_OVERLAP = 1e-3
 
 
-def _house_rooms(d: dict[str, Any], vocabulary: Vocabulary) -> tuple[list[Room], list[str]]:
-    """Each room of a (schema-valid) house layout as a room layout's is checked, without
-    doors, and that no two overlap; the rooms and the names the sentences give them."""
-    ids: dict[str, int] = {}
-    for i, rd in enumerate(d['rooms']):
-        if rd['id'] in ids:
-            path = f'rooms[{i}].id'
-            raise SceneValidationError(f'{path} {quoted(rd["id"])} is the id of rooms'
-                                       f'[{ids[rd["id"]]}] too: room ids must be unique', path)
-        ids[rd['id']] = i
-    height = d.get('wall_height', DEFAULT_WALL_HEIGHT)
-    rooms = [_build_room({**rd, 'wall_height': rd.get('wall_height', height), 'doors': []},
-                         f'rooms[{i}]', vocabulary) for i, rd in enumerate(d['rooms'])]
-    names = [f'rooms[{i}] ({quoted(rd["id"])})' for i, rd in enumerate(d['rooms'])]
-    polygons = [room.polygon for room in rooms]
-    tree = shapely.STRtree(polygons)
-    for i, j in zip(*tree.query(polygons, predicate='intersects'), strict=True):
-        if i < j:
-            shared = polygons[i].intersection(polygons[j]).area
-            if shared > HOUSE_OVERLAP:
-                path = f'rooms[{j}].floor'
+class _HouseRooms:
+    """The checked rooms of a house layout, the names its sentences give them, and where
+    they are (an R-tree of their floors)."""
+
+    def __init__(self, d: dict[str, Any], vocabulary: Vocabulary):
+        self.ids: dict[str, int] = {}
+        for i, rd in enumerate(d['rooms']):
+            if rd['id'] in self.ids:
+                path = f'rooms[{i}].id'
                 raise SceneValidationError(
-                    f'{path} overlaps {names[i]} by {number(shared)} m²: the rooms of a house '
-                    f'must not overlap, only share walls', path)
-    return rooms, names
+                    f'{path} {quoted(rd["id"])} is the id of rooms[{self.ids[rd["id"]]}] too: '
+                    'room ids must be unique', path)
+            self.ids[rd['id']] = i
+        height = d.get('wall_height', DEFAULT_WALL_HEIGHT)
+        self.rooms = [_build_room({**rd, 'wall_height': rd.get('wall_height', height),
+                                   'doors': []}, f'rooms[{i}]', vocabulary)
+                      for i, rd in enumerate(d['rooms'])]
+        self.names = [f'rooms[{i}] ({quoted(rd["id"])})' for i, rd in enumerate(d['rooms'])]
+        self.polygons = [room.polygon for room in self.rooms]
+        self.tree = shapely.STRtree(self.polygons)
+        for i, j in zip(*self.tree.query(self.polygons, predicate='intersects'), strict=True):
+            if i < j:
+                shared = self.polygons[i].intersection(self.polygons[j]).area
+                if shared > HOUSE_OVERLAP:
+                    path = f'rooms[{j}].floor'
+                    raise SceneValidationError(
+                        f'{path} overlaps {self.names[i]} by {number(shared)} m²: the rooms of '
+                        'a house must not overlap, only share walls', path)
+
+    def on_walls(self, opening: Opening) -> dict[int, Any]:
+        """The rooms with ``opening`` on one of their walls, and that wall."""
+        near = self.tree.query(shapely.Point(opening.position).buffer(OPENING_TOLERANCE))
+        return {int(i): w for i in sorted(near)
+                if (w := self.rooms[i].wall_of(opening, OPENING_TOLERANCE)) is not None}
+
+    def behind(self, opening: Opening, wall, home: int) -> list[int]:
+        """The rooms other than ``home`` whose floor the opening leads into: those that
+        meet the opening's width taken ``MAX_WALL_THICKNESS`` out through ``wall``."""
+        off = wall.offset_of(opening.position)
+        a = wall.point_at(off - opening.width / 2 + OPENING_TOLERANCE)
+        b = wall.point_at(off + opening.width / 2 - OPENING_TOLERANCE)
+        out = -wall.normal * MAX_WALL_THICKNESS
+        box = shapely.Polygon([a, b, b + out, a + out])
+        return [int(i) for i in sorted(self.tree.query(box)) if i != home
+                and self.polygons[i].intersection(box).area > HOUSE_OVERLAP]
 
 
-def _house_door(dd: dict[str, Any], path: str, ids: dict[str, int], rooms: list[Room],
-                names: list[str]) -> HouseDoor:
+def _house_door(dd: dict[str, Any], path: str, house: _HouseRooms) -> HouseDoor:
     """A (schema-valid) door of a house layout, after the checks that the rooms it names
-    exist and share the wall it lies on (back to back within a wall's thickness), and that
-    an entrance lies on an outside wall; each room's opening is on that room's wall."""
-    members = []
+    exist and share the wall it lies on (back to back within a wall's thickness, no third
+    room between them), and that an entrance leads into no room; each room's opening is
+    on that room's wall."""
+    members, names = [], house.names
     for k, rid in enumerate(dd['rooms']):
-        if rid not in ids:
+        if rid not in house.ids:
             rpath = f'{path}.rooms[{k}]'
             raise SceneValidationError(
                 f'{rpath} {quoted(rid)} is not the id of a room of the house', rpath)
-        members.append(ids[rid])
+        members.append(house.ids[rid])
     if len(members) == 2 and members[0] == members[1]:
         raise SceneValidationError(f'{path}.rooms names {quoted(dd["rooms"][0])} twice: a '
                                    'door joins two rooms, or leads out of one', path)
     opening = Opening('door', (float(dd['position'][0]), float(dd['position'][1])),
                       float(dd['width']), float(dd['height']))
-    walls = {i: w for i, room in enumerate(rooms)
-             if (w := room.wall_of(opening, OPENING_TOLERANCE)) is not None}
+    walls = house.on_walls(opening)
     home = next((i for i in members if i in walls), None)
     if home is None:
         elsewhere = f': it is on a wall of {names[next(iter(walls))]}' if walls else ''
         raise SceneValidationError(f'{path} is not on a wall of {names[members[0]]}{elsewhere}',
                                    path)
-    # every room behind the door's wall, through a wall's thickness at most
-    behind = {i: (opening if i in walls else across(room, opening, walls[home]))
-              for i, room in enumerate(rooms) if i != home}
-    behind = {i: o for i, o in behind.items() if o is not None}
-    if len(members) == 2:
-        other = next(i for i in members if i != home)
-        if other not in behind:
+    behind = house.behind(opening, walls[home], home)
+    if len(members) == 1:
+        if behind:
             raise SceneValidationError(
-                f'{path} is on a wall of {names[home]} that {names[other]} does not share: '
-                f'the door must lie on the wall between them', path)
-        return HouseDoor(tuple(dd['rooms']), opening,
-                         {rid: opening if ids[rid] == home else behind[ids[rid]]
-                          for rid in dd['rooms']})
-    if behind:
+                f'{path} leads outside from {names[home]} but lies on the wall it shares '
+                f'with {names[behind[0]]}: name both rooms for a door between them', path)
+        return HouseDoor(tuple(dd['rooms']), opening, {dd['rooms'][0]: opening})
+    other = next(i for i in members if i != home)
+    moved = opening if other in walls else across(house.rooms[other], opening, walls[home])
+    if other not in behind or moved is None:
         raise SceneValidationError(
-            f'{path} leads outside from {names[home]} but lies on the wall it shares '
-            f'with {names[next(iter(behind))]}: name both rooms for a door between them', path)
-    return HouseDoor(tuple(dd['rooms']), opening, {dd['rooms'][0]: opening})
+            f'{path} is on a wall of {names[home]} that {names[other]} does not share along '
+            'its whole width: the door must lie on the wall between them', path)
+    if len(behind) > 1:
+        third = next(i for i in behind if i != other)
+        raise SceneValidationError(
+            f'{path} between {names[home]} and {names[other]} also opens into '
+            f'{names[third]}: a door joins two rooms', path)
+    return HouseDoor(tuple(dd['rooms']), opening,
+                     {dd['rooms'][0]: opening if members[0] == home else moved,
+                      dd['rooms'][1]: opening if members[1] == home else moved})
 
 
 def _house_from_dict(d: Any, vocabulary: Vocabulary = PAPER) -> House:
     check_against_schema(d, 'house_layout')
-    rooms, names = _house_rooms(d, vocabulary)
-    ids = {rd['id']: i for i, rd in enumerate(d['rooms'])}
-    doors, named = [], [[] for _ in rooms]
+    house = _HouseRooms(d, vocabulary)
+    names = house.names
+    for i, room in enumerate(house.rooms):
+        for k, window in enumerate(room.windows):
+            behind = house.behind(window, room.wall_of(window, OPENING_TOLERANCE), i)
+            if behind:
+                path = f'rooms[{i}].windows[{k}]'
+                raise SceneValidationError(
+                    f'{path} is on the wall {names[i]} shares with {names[behind[0]]}: '
+                    'windows go on outside walls', path)
+    doors, named = [], [[] for _ in house.rooms]
     for j, dd in enumerate(d['doors']):
-        door = _house_door(dd, f'doors[{j}]', ids, rooms, names)
+        door = _house_door(dd, f'doors[{j}]', house)
         for rid, opening in door.openings.items():
-            named[ids[rid]].append((f'doors[{j}]', opening))
+            named[house.ids[rid]].append((f'doors[{j}]', opening))
         doors.append(door)
     out = {}
-    for i, (room, rd) in enumerate(zip(rooms, d['rooms'], strict=True)):
+    for i, (room, rd) in enumerate(zip(house.rooms, d['rooms'], strict=True)):
         room = Room(room.room_type, room.floor, room.wall_height,
                     tuple(o for _, o in named[i]), room.windows)
         _check_openings(room, f'rooms[{i}]', named[i] + [
-            (f'rooms[{i}].windows[{k}]', w) for k, w in enumerate(room.windows)])
+            (f'rooms[{i}].windows[{k}]', w) for k, w in enumerate(room.windows)], names[i])
         out[rd['id']] = room
-    house = House(out, tuple(doors),
-                  {'request_id': d['request_id']} if 'request_id' in d else {})
-    if not house.entrances:
+    result = House(out, tuple(doors),
+                   {'request_id': d['request_id']} if 'request_id' in d else {})
+    if not result.entrances:
         raise SceneValidationError('doors has no entrance: a house needs a door that names '
                                    'one room and leads outside', 'doors')
-    reached = set(house.reachable())
+    reached = set(result.reachable())
     for i, rid in enumerate(out):
         if rid not in reached:
             raise SceneValidationError(f'{names[i]} cannot be reached from an entrance through '
                                        'the doors', f'rooms[{i}]')
-    return house
+    return result
 
 
 def parse_house_layout(text_or_dict: Any, vocabulary: Vocabulary = PAPER) -> House:
@@ -680,12 +712,6 @@ def parse_house_layout(text_or_dict: Any, vocabulary: Vocabulary = PAPER) -> Hou
         if looks_like_python_dict(text_or_dict):
             raise SceneValidationError(f'{e}; {PYTHON_DICT_HINT}', e.path) from None
         raise
-
-
-def is_house_layout(d: Any) -> bool:
-    """Whether a payload (as ``read_payload`` gives it) is a house layout rather than a
-    room layout: a mapping of rooms."""
-    return isinstance(d, Mapping) and 'rooms' in d
 
 
 def _scene_from_dict(d: Any, models: catalog.Catalog | None = None,

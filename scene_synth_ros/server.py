@@ -783,8 +783,6 @@ class SceneServer:
         # one more object, a layout published as given) are measured here.
         promise = served.robot or robot.report(served.scene, robot_of(self.config))
         served.scene.meta['robot'] = promise.to_dict()
-        served.map = occupancy_grid(served.scene, robot_of(self.config),
-                                    map_of(self.config))
         # Never publish what the schema would refuse; the model ids are the catalog's.
         served.json = dump_scene(served.scene, served.catalog, served.vocabulary)
         with self._lock:
@@ -794,6 +792,8 @@ class SceneServer:
         if stale:
             self._supersede(job)
             return False
+        # the map of the robot the room was furnished for (a goal's own, else the node's)
+        served.map = occupancy_grid(served.scene, promise.robot, map_of(self.config))
         message = (f'{served.source}: {len(served.scene)} objects in '
                    f'{with_article(served.scene.room.room_type)}')
         if not promise.kept:       # a user's objects broke it; synthesis never does

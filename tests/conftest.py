@@ -102,6 +102,9 @@ def ros_domains(lo: int, hi: int):
     running side by side never share a domain; a random order keeps test runs apart."""
     count = int(os.environ.get('PYTEST_XDIST_WORKER_COUNT', '1'))
     index = int(os.environ.get('PYTEST_XDIST_WORKER', 'gw0').removeprefix('gw'))
-    mine = [d for d in range(lo, hi) if d % count == index]
+    mine = list(range(lo, hi))[index::count]
+    if not mine:
+        raise RuntimeError(f'{count} test workers share the {hi - lo} ROS domains from {lo} '
+                           f'to {hi - 1}: run fewer (make test TEST_WORKERS=N)')
     random.Random().shuffle(mine)
     return itertools.cycle(mine)

@@ -224,7 +224,7 @@ def test_home_tables_tiny(tmp_path):
 @pytest.mark.slow
 def test_node_startup_tiny():
     out = run('node_startup.py', '-n', '1', '--rooms', '1', '--domain-id',
-              str(next(ros_domains(150, 160))))
+              str(next(ros_domains(100, 150))))
     rows = [line for line in out.splitlines() if 'median' in line]
     assert [r.split()[0] for r in rows] == ['start-up', 'first', 'typical'], out
 

@@ -8,7 +8,6 @@ import pytest
 
 from scene_synth_ros.corpus.house_plan import PlanConfig, house_plan
 from scene_synth_ros.house import House
-from scene_synth_ros.paths import schema_dir
 from scene_synth_ros.schema import SceneValidationError, parse_house_layout
 
 # A hallway with a bedroom above it and a kitchen below, a door to each, an entrance.
@@ -35,12 +34,6 @@ def one_sentence(err: SceneValidationError, path: str) -> str:
     assert '\n' not in msg and not re.search(r'[.!?]\s+[A-Z]', msg), msg
     assert 10 < len(msg) < 600, msg
     return msg
-
-
-def test_the_schema_file_is_valid_and_documented():
-    from jsonschema import Draft202012Validator
-    doc = json.loads((schema_dir() / 'house_layout.schema.json').read_text())
-    Draft202012Validator.check_schema(doc)
 
 
 def test_a_house_layout_becomes_rooms_with_their_doors_and_round_trips():
@@ -74,6 +67,19 @@ def _broken(change) -> dict:
     (lambda d: d['doors'][0].update(rooms=['hall'], position=[2, 1.4]), 'doors[0]',
      'shares with'),
     (lambda d: d['doors'][1].update(rooms=['hall', 'hall']), 'doors[1]', 'twice'),
+    # an entrance whose width runs past the end of the kitchen's wall, half into it
+    (lambda d: d['doors'].append({'rooms': ['hall'], 'position': [4.2, 0], 'width': 0.9,
+                                  'height': 2.05}), 'doors[3]', "shares with rooms[2]"),
+    (lambda d: d['rooms'][1]['windows'].append({'position': [3.2, 1.4], 'width': 0.8,
+                                                'height': 1.0, 'sill': 1.0}),
+     'rooms[1].windows[1]', 'windows go on outside walls'),
+    # a 0.4 m strip of a room between the hallway and the kitchen, 0.4 m further down
+    (lambda d: (d['rooms'][2].update(floor=[[0, -3.9], [4, -3.9], [4, -0.4], [0, -0.4]]),
+                d['rooms'].append({'id': 'strip', 'room_type': 'hallway',
+                                   'floor': [[0, -0.4], [6, -0.4], [6, 0], [0, 0]]}),
+                d['doors'].append({'rooms': ['strip'], 'position': [6, -0.2], 'width': 0.35,
+                                   'height': 2.0})),
+     'doors[2]', "also opens into rooms[3] ('strip')"),
     (lambda d: d['doors'].pop(0), 'doors', 'no entrance'),
     (lambda d: d['doors'].pop(2), 'rooms[2]', 'cannot be reached'),
     (lambda d: d['doors'].append(dict(d['doors'][2], position=[3.5, 0])), 'doors[3]',
@@ -157,3 +163,12 @@ def test_rooms_whose_walls_stand_back_to_back_a_wall_apart_share_the_door_betwee
     with pytest.raises(SceneValidationError) as e:
         parse_house_layout(d)
     assert 'shares with rooms[1]' in one_sentence(e.value, 'doors[1]')
+
+
+def test_a_plan_of_day_rooms_or_one_room_has_its_hallway_on_one_side_and_too_many_are_refused():
+    from scene_synth_ros.corpus.house_plan import PlanError
+    for rooms in (('living', 'kitchen'), ('bedroom',)):
+        house = house_plan(0, 0, PlanConfig(rooms=rooms))
+        assert len(house.rooms) == len(rooms) + 1
+    with pytest.raises(PlanError, match='do not fit along a hallway of at most 16 m'):
+        house_plan(0, 0, PlanConfig(rooms=('bedroom',) * 8))

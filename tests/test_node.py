@@ -48,7 +48,7 @@ from scene_synth_ros.user_catalog import load_catalog  # noqa: E402
 LAYOUT = (examples_dir() / 'bedroom_layout.json').read_text()
 L_LAYOUT = (examples_dir() / 'lshaped_living_layout.json').read_text()
 # Domains 1..232 are valid for Fast DDS; a random start keeps two concurrent runs apart.
-_DOMAINS = ros_domains(1, 150)
+_DOMAINS = ros_domains(1, 100)
 MARKER_CUBE, MARKER_MESH = 1, 10
 
 

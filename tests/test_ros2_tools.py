@@ -29,7 +29,7 @@ pytestmark = [
                               'from ../shared/ros2-tools)')]
 ECHO_SCENE = ('ros2 topic echo --once --field data --full-length --qos-reliability reliable '
               '--qos-durability transient_local /scene_synth_node/scene std_msgs/msg/String')
-# Domains apart from tests/test_node.py's (which count up from below 150).
+# Domains apart from tests/test_node.py's (1-99) and the benchmarks' (100-149).
 _DOMAINS = ros_domains(160, 230)
 
 

@@ -57,7 +57,7 @@ def add_parser(sub) -> None:
 
 
 def cmd_house_plans(args) -> int:
-    from ..corpus.house_plan import PlanConfig, house_plan
+    from ..corpus.house_plan import PlanConfig, PlanError, house_plan
     from ..files import write_atomic
     from ..schema import format_json
     if args.n < 1:
@@ -73,7 +73,10 @@ def cmd_house_plans(args) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     for i in range(args.n):
-        house = house_plan(args.seed, i, PlanConfig(rooms))
+        try:
+            house = house_plan(args.seed, i, PlanConfig(rooms))
+        except PlanError as e:
+            raise UserError(str(e)) from None
         write_atomic(out / f'house_{i:05d}.json', format_json(house.to_dict()) + '\n')
         if not args.quiet:
             kinds = ', '.join(r.room_type for r in house.rooms.values())

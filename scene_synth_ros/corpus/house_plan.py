@@ -11,21 +11,30 @@ neighbours among them joined by a door too (an open kitchen through a door), the
 bathrooms and study on the other, sides balanced by length. The entrance is a door in the
 hallway's end wall. Windows go on each room's outside walls, as many as its type's table
 gives (``shell.window_count``). Every plan is checked as a house layout
-(``schema.parse_house_layout``), so it can be furnished as it is.
+(``schema.parse_house_layout``), so it can be furnished as it is; one whose rooms do not fit
+along a 16 m hallway is drawn again (``PlanError`` after ``ATTEMPTS``).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
-import math
 
 import numpy as np
 from shapely.geometry import LineString, Polygon
 
 from ..categories import paper_spec
+from ..errors import SceneSynthError
 from ..house import House, HouseDoor
 from ..scene import Opening, Room
+from ..schema import SceneValidationError, parse_house_layout
 from ..thresholds import MAX_ROOM_SIDE
-from .shell import CORNER_GAP, SHELLS, _place_openings, shell_area, window_count
+from .shell import (
+    CORNER_GAP,
+    SHELLS,
+    _place_openings,
+    rectangle_sides,
+    shell_area,
+    window_count,
+)
 
 # ESTIMATE, not a measurement (the data here has no whole homes to count): the programmes of
 # small homes, by share: one to three bedrooms, a bathroom for up to two bedrooms.
@@ -45,6 +54,10 @@ DOOR_HEIGHT = (2.0, 2.1)
 WALL_HEIGHT = (2.5, 2.9)
 DOOR_INSET = 0.15              # m of wall between a door and the end of the wall it shares
 ATTEMPTS = 20
+
+
+class PlanError(SceneSynthError):
+    """No plan of the programme asked for could be drawn."""
 
 
 @dataclass(frozen=True)
@@ -68,9 +81,8 @@ def _rectangle(room_type: str, rng: np.random.Generator) -> tuple[float, float]:
     """(width along the hallway, depth away from it) of a room of ``room_type``, m."""
     cfg = SHELLS[room_type]
     area = shell_area(room_type, rng)
-    aspect = rng.uniform(*cfg.aspect)
-    long_side = min(math.sqrt(area * aspect), MAX_ROOM_SIDE - 0.5)
-    short_side = max(area / long_side, cfg.min_side)
+    long_side, short_side = rectangle_sides(area, rng.uniform(*cfg.aspect),
+                                            MAX_ROOM_SIDE - 0.5, cfg.min_side)
     w, d = (long_side, short_side) if rng.random() < 0.5 else (short_side, long_side)
     return round(w, 2), round(d, 2)
 
@@ -113,7 +125,7 @@ def _attempt(rng: np.random.Generator, config: PlanConfig) -> House | None:
     sides = _sides(types, widths)
     length = max(sum(widths[i] for i in side) for side in sides)
     hall_w = round(float(rng.uniform(*HALL_WIDTH)), 2)
-    if length > MAX_ROOM_SIDE - 0.1 or any(len(s) == 0 for s in sides):
+    if length > MAX_ROOM_SIDE - 0.1:
         return None
     wall_height = round(float(rng.uniform(*WALL_HEIGHT)), 2)
     ids = []
@@ -156,7 +168,12 @@ def _attempt(rng: np.random.Generator, config: PlanConfig) -> House | None:
         rooms[rid] = room if rt == 'hallway' else Room(
             rt, room.floor, wall_height, mine, _windows(room, _outside(room, rid, floors),
                                                         rng))
-    return House(rooms, tuple(doors), {'generator': 'house_plan'})
+    house = House(rooms, tuple(doors), {'generator': 'house_plan'})
+    try:
+        parse_house_layout(house.to_dict())        # as a user's layout would be checked
+    except SceneValidationError:
+        return None
+    return house
 
 
 def _outside(room: Room, rid: str, floors: dict) -> list[int]:
@@ -177,5 +194,5 @@ def house_plan(seed: int = 0, index: int = 0, config: PlanConfig = PlanConfig())
         house = _attempt(np.random.default_rng(attempt), config)
         if house is not None:
             return house
-    raise RuntimeError(f'no house plan of seed {seed}, index {index} fits a '
-                       f'{MAX_ROOM_SIDE:g} m hallway in {ATTEMPTS} attempts')
+    raise PlanError(f'no house plan of seed {seed}, index {index} in {ATTEMPTS} attempts: '
+                    f'its rooms do not fit along a hallway of at most {MAX_ROOM_SIDE:g} m')

@@ -92,6 +92,14 @@ def window_count(mean: float, rng: np.random.Generator) -> int:
     return int(rng.binomial(3, min(mean / 3.0, 1.0)))
 
 
+def rectangle_sides(area: float, aspect: float, cap: float, min_side: float
+                    ) -> tuple[float, float]:
+    """(long, short) sides of a rectangle of ``area`` m² and long/short ``aspect``, neither
+    longer than ``cap`` nor the short one under ``min_side``."""
+    long_side = min(math.sqrt(area * aspect), cap)
+    return long_side, min(max(area / long_side, min_side), cap)
+
+
 def floor_outline(room_type: str, area: float, rng: np.random.Generator,
                   cfg: ShellConfig) -> list[tuple[float, float]]:
     """A rectangle, or with ``l_shape_probability`` an L: the rectangle less one corner."""
@@ -99,9 +107,8 @@ def floor_outline(room_type: str, area: float, rng: np.random.Generator,
     aspect = rng.uniform(*cfg.aspect)
     l_shape = rng.random() < cfg.l_shape_probability
     cut = (rng.uniform(0.3, 0.45), rng.uniform(0.3, 0.45)) if l_shape else (0.0, 0.0)
-    box_area = area / (1.0 - cut[0] * cut[1])
-    long_side = min(math.sqrt(box_area * aspect), cap)
-    short_side = min(max(box_area / long_side, cfg.min_side), cap)
+    long_side, short_side = rectangle_sides(area / (1.0 - cut[0] * cut[1]), aspect, cap,
+                                            cfg.min_side)
     w, d = (long_side, short_side) if rng.random() < 0.5 else (short_side, long_side)
     w, d = round(w, 2), round(d, 2)
     if not l_shape:
