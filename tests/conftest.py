@@ -6,6 +6,7 @@ import itertools
 import os
 from pathlib import Path
 import random
+import signal
 
 import pytest
 import torch
@@ -94,6 +95,12 @@ def cli(capsys):
         return CliRun(code, out, err)
 
     return run
+
+
+# A pytest-xdist worker ignores SIGINT (its controller takes Ctrl-C), and a program it starts
+# inherits the ignoring: `ros2 topic pub` would never end on the Ctrl-C a test sends it.
+if os.environ.get('PYTEST_XDIST_WORKER'):
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 def ros_domains(lo: int, hi: int):
