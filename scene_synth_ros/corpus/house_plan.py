@@ -133,7 +133,7 @@ def _attempt(rng: np.random.Generator, config: PlanConfig) -> House | None:
     for rt in types:
         counts[rt] = counts.get(rt, 0) + 1
         ids.append(f'{rt}_{counts[rt]}')
-    floors, hall_doors, doors = {}, [], []
+    floors, doors = {}, []
     for side, members in enumerate(sides):
         x = 0.0
         for k, i in enumerate(members):
@@ -145,7 +145,6 @@ def _attempt(rng: np.random.Generator, config: PlanConfig) -> House | None:
             opening = Opening('door', (centre, y), width,
                               round(float(rng.uniform(*DOOR_HEIGHT)), 2))
             doors.append(HouseDoor(('hallway_1', ids[i]), opening))
-            hall_doors.append(opening)
             if k and types[i] in DAY_ROOMS and types[members[k - 1]] in DAY_ROOMS:
                 prev = sizes[members[k - 1]][1]
                 shared = min(d, prev)

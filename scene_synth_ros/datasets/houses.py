@@ -10,8 +10,6 @@ entrance. Rooms that no entrance reaches are left out, with a note.
 """
 from __future__ import annotations
 
-from typing import Any
-
 from ..house import House, HouseDoor, across
 from ..scene import Room
 from ..thresholds import OPENING_TOLERANCE
@@ -64,7 +62,3 @@ def house_of(rooms: dict[str, Room], house_id: str = '') -> tuple[House | None, 
         house = House(kept, tuple(d for d in doors if set(d.rooms) <= reached), house.meta)
     return house, notes
 
-
-def rooms_of(scenes: dict[str, dict[str, Any]]) -> dict[str, Room]:
-    """Rooms by id from imported scenes (dicts) of one house, by their names."""
-    return {name: Room.from_dict(scene['room']) for name, scene in scenes.items()}
