@@ -235,3 +235,14 @@ def test_size_bands_tiny():
     assert [line.split()[1] for line in lines] == ['square', 'up', 'up']
     # every room of every band valid and keeping the robot promise
     assert all(line.split()[-7:-4] == ['1', '1', '1'] for line in lines), out
+
+
+def test_house_plans_tiny():
+    real = BENCHMARKS.parent.parent / 'shared' / 'data' / 'real'
+    if not real.is_dir():
+        pytest.skip(f'no real data in {real}')
+    out = run('house_plans.py', '-n', '3', '--import', 'suncg', str(real / 'suncg'))
+    assert 'plans: 3 of 3 valid house layouts' in out, out
+    assert 'at the limits' in out and 'refused: ' in out, out
+    assert 'suncg: 1 rooms kept, 1 house layouts of 1 rooms, 0 rooms or houses left out' \
+        in out, out
