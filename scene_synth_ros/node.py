@@ -82,6 +82,10 @@ EXIT_STARTUP_FAILED = 1
 # calls and as many whole-room ones (server.RANK). Two more keep answering "busy", the
 # diagnostics timer and the subscriptions.
 EXECUTOR_THREADS = 2 * PARAMETERS['max_pending'][1][1] + 2
+# Seconds a stop waits for the room under way, then for the answers being sent: a node
+# destroyed while one is still sending prints an error at exit, and on a loaded machine two
+# seconds were not always enough. An idle node stops at once.
+STOP_WAIT = 6.0
 
 # Fast DDS's profile for the node's own endpoints. rmw_fastrtps keeps every history payload
 # at the largest size it has held (PREALLOCATED_WITH_REALLOC), so the 1-7 MB layouts that the
@@ -627,7 +631,7 @@ def main(args: list[str] | None = None) -> int:
         # Answer the calls waiting for the worker first: their callbacks hold the executor's
         # threads, which its shutdown waits for.
         if node.server is not None:
-            node.server.close(timeout=1.5)
+            node.server.close(timeout=STOP_WAIT)
         # Then let the callbacks just answered send their responses before the node goes:
         # one still sending when it is destroyed fails with "cannot use Destroyable", which
         # Python prints at exit as an exception never retrieved. Executor.shutdown is meant
@@ -635,7 +639,7 @@ def main(args: list[str] | None = None) -> int:
         # returns at once, so wait on the executor's own count of work in progress.
         work = getattr(executor, '_work_tracker', None)
         if work is not None:
-            work.wait(2.0)
+            work.wait(STOP_WAIT)
         executor.shutdown(timeout_sec=2.0)
     except StartupError as e:
         print(f'{NODE_NAME}: cannot start: {e}', file=sys.stderr)

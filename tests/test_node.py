@@ -609,18 +609,29 @@ def test_typed_requests_carry_their_arguments(node):
 def test_a_closed_client_leaves_nothing_a_forked_process_would_finalise(node):
     # A client's rclpy objects left to the garbage collector are finalised in whatever
     # process collects them: a worker forked later (a batch, a pool) hung there, joining
-    # threads of the middleware it does not have.
-    client = SceneSynthClient(node.client.target, domain_id=node.domain)
-    client.spin_until(client.ready, 60.0, 'services')
-    client.furnish(LAYOUT, seed=1)
-    client.close()
-    del client
-    child = multiprocessing.get_context('fork').Process(target=gc.collect)
-    child.start()
-    child.join(60)
-    if child.exitcode is None:
-        child.kill()
-    assert child.exitcode == 0
+    # threads of the middleware it does not have. Run in a process of its own: forking this
+    # test worker, whose other threads (pytest-xdist's) may hold a lock at the fork, can
+    # hang the child for reasons of its own.
+    script = f"""
+import gc, multiprocessing, sys
+from scene_synth_ros.ros_client import SceneSynthClient
+client = SceneSynthClient({node.client.target!r}, domain_id={node.domain})
+client.spin_until(client.ready, 60.0, 'services')
+client.furnish({LAYOUT!r}, seed=1)
+client.close()
+del client
+child = multiprocessing.get_context('fork').Process(target=gc.collect)
+child.start()
+child.join(60)
+if child.exitcode is None:
+    child.kill()
+print('child exit', child.exitcode)
+sys.exit(0 if child.exitcode == 0 else 1)
+"""
+    done = subprocess.run([sys.executable, '-c', script], capture_output=True, text=True,
+                          timeout=180)
+    assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
+    assert 'child exit 0' in done.stdout
 
 
 def test_the_guides_python_client_example_works_on_a_node_that_served_rooms(node):
