@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+import shapely
 
 from .scene import Opening, Room, Wall
 from .thresholds import MAX_WALL_THICKNESS, OPENING_TOLERANCE
@@ -35,6 +36,38 @@ def across(room: Room, opening: Opening, wall: Wall) -> Opening | None:
         if room.wall_of(moved, OPENING_TOLERANCE) is not None:
             return moved
     return None
+
+
+# Square metres two rooms' floors may share before they overlap (a rounding of shared walls),
+# and that a floor must have behind a door or window for the opening to lead into it.
+HOUSE_OVERLAP = 1e-3
+
+
+class Floors:
+    """The floors of a house's rooms and an R-tree of them: which rooms an opening lies on
+    the wall of, and which it leads into through that wall."""
+
+    def __init__(self, rooms):
+        self.rooms = list(rooms)
+        self.polygons = [room.polygon for room in self.rooms]
+        self.tree = shapely.STRtree(self.polygons)
+
+    def on_walls(self, opening: Opening) -> dict[int, Wall]:
+        """The rooms (indices) with ``opening`` on one of their walls, and that wall."""
+        near = self.tree.query(shapely.Point(opening.position).buffer(OPENING_TOLERANCE))
+        return {int(i): w for i in sorted(near)
+                if (w := self.rooms[i].wall_of(opening, OPENING_TOLERANCE)) is not None}
+
+    def behind(self, opening: Opening, wall: Wall, home: int) -> list[int]:
+        """The rooms other than ``home`` whose floor the opening leads into: those that
+        meet the opening's width taken ``MAX_WALL_THICKNESS`` out through ``wall``."""
+        off = wall.offset_of(opening.position)
+        a = wall.point_at(off - opening.width / 2 + OPENING_TOLERANCE)
+        b = wall.point_at(off + opening.width / 2 - OPENING_TOLERANCE)
+        out = -wall.normal * MAX_WALL_THICKNESS
+        box = shapely.Polygon([a, b, b + out, a + out])
+        return [int(i) for i in sorted(self.tree.query(box)) if i != home
+                and self.polygons[i].intersection(box).area > HOUSE_OVERLAP]
 
 
 @dataclass(frozen=True)

@@ -43,14 +43,13 @@ from . import catalog
 from .categories import CATEGORIES, PAPER, RoomTypeSpec, Vocabulary
 from .errors import SceneSynthError, UnknownRoomType, number, quoted, with_article
 from .files import write_atomic
-from .house import House, HouseDoor, across
+from .house import HOUSE_OVERLAP, Floors, House, HouseDoor, across
 from .limits import LimitExceeded, YamlError, check_tree, join, loads, loads_yaml
 from .paths import schema_dir
 from .render import RoomDoesNotFit, room_frame_box
 from .scene import DEFAULT_WALL_HEIGHT, Opening, PlacedObject, Room, Scene, ccw, fresh_id
 from .thresholds import (
     CENTRE_OFF_FLOOR,
-    MAX_WALL_THICKNESS,
     MIN_FLOOR_AREA,
     MIN_VERTEX_SPACING,
     OPENING_TOLERANCE,
@@ -567,13 +566,9 @@ def _layout_to_scene(d: Any, models: catalog.Catalog | None = None,
 
 # ----------------------------------------------------------------------------- houses
 
-# Square metres two rooms' floors may share before they overlap (a rounding of shared walls).
-HOUSE_OVERLAP = 1e-3
-
-
 class _HouseRooms:
     """The checked rooms of a house layout, the names its sentences give them, and where
-    they are (an R-tree of their floors)."""
+    they are (``house.Floors``)."""
 
     def __init__(self, d: dict[str, Any], vocabulary: Vocabulary):
         self.ids: dict[str, int] = {}
@@ -589,33 +584,16 @@ class _HouseRooms:
                                    'doors': []}, f'rooms[{i}]', vocabulary)
                       for i, rd in enumerate(d['rooms'])]
         self.names = [f'rooms[{i}] ({quoted(rd["id"])})' for i, rd in enumerate(d['rooms'])]
-        self.polygons = [room.polygon for room in self.rooms]
-        self.tree = shapely.STRtree(self.polygons)
-        for i, j in zip(*self.tree.query(self.polygons, predicate='intersects'), strict=True):
+        self.floors = Floors(self.rooms)
+        polygons = self.floors.polygons
+        for i, j in zip(*self.floors.tree.query(polygons, predicate='intersects'), strict=True):
             if i < j:
-                shared = self.polygons[i].intersection(self.polygons[j]).area
+                shared = polygons[i].intersection(polygons[j]).area
                 if shared > HOUSE_OVERLAP:
                     path = f'rooms[{j}].floor'
                     raise SceneValidationError(
                         f'{path} overlaps {self.names[i]} by {number(shared)} m²: the rooms of '
                         'a house must not overlap, only share walls', path)
-
-    def on_walls(self, opening: Opening) -> dict[int, Any]:
-        """The rooms with ``opening`` on one of their walls, and that wall."""
-        near = self.tree.query(shapely.Point(opening.position).buffer(OPENING_TOLERANCE))
-        return {int(i): w for i in sorted(near)
-                if (w := self.rooms[i].wall_of(opening, OPENING_TOLERANCE)) is not None}
-
-    def behind(self, opening: Opening, wall, home: int) -> list[int]:
-        """The rooms other than ``home`` whose floor the opening leads into: those that
-        meet the opening's width taken ``MAX_WALL_THICKNESS`` out through ``wall``."""
-        off = wall.offset_of(opening.position)
-        a = wall.point_at(off - opening.width / 2 + OPENING_TOLERANCE)
-        b = wall.point_at(off + opening.width / 2 - OPENING_TOLERANCE)
-        out = -wall.normal * MAX_WALL_THICKNESS
-        box = shapely.Polygon([a, b, b + out, a + out])
-        return [int(i) for i in sorted(self.tree.query(box)) if i != home
-                and self.polygons[i].intersection(box).area > HOUSE_OVERLAP]
 
 
 def _house_door(dd: dict[str, Any], path: str, house: _HouseRooms) -> HouseDoor:
@@ -635,13 +613,13 @@ def _house_door(dd: dict[str, Any], path: str, house: _HouseRooms) -> HouseDoor:
                                    'door joins two rooms, or leads out of one', path)
     opening = Opening('door', (float(dd['position'][0]), float(dd['position'][1])),
                       float(dd['width']), float(dd['height']))
-    walls = house.on_walls(opening)
+    walls = house.floors.on_walls(opening)
     home = next((i for i in members if i in walls), None)
     if home is None:
         elsewhere = f': it is on a wall of {names[next(iter(walls))]}' if walls else ''
         raise SceneValidationError(f'{path} is not on a wall of {names[members[0]]}{elsewhere}',
                                    path)
-    behind = house.behind(opening, walls[home], home)
+    behind = house.floors.behind(opening, walls[home], home)
     if len(members) == 1:
         if behind:
             raise SceneValidationError(
@@ -670,7 +648,7 @@ def _house_from_dict(d: Any, vocabulary: Vocabulary = PAPER) -> House:
     names = house.names
     for i, room in enumerate(house.rooms):
         for k, window in enumerate(room.windows):
-            behind = house.behind(window, room.wall_of(window, OPENING_TOLERANCE), i)
+            behind = house.floors.behind(window, room.wall_of(window, OPENING_TOLERANCE), i)
             if behind:
                 path = f'rooms[{i}].windows[{k}]'
                 raise SceneValidationError(

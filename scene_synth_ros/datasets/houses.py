@@ -2,15 +2,16 @@
 the rooms an import kept, in their house's frame, joined by their doors (``scene-synth
 import ... --layouts``), so that real floor plans can be furnished again and again.
 
-A door of a room joins it to the room behind its wall, back to back at most a wall's
-thickness away (``house.across``; a data set's house has thick walls, and each room of it
+A door of a room joins it to the room behind its wall, the one whose floor its width
+reaches through that wall, back to back at most a wall's thickness away (``house.Floors``,
+``house.across``; a data set's house has thick walls, and each room of it
 has the door on its own wall face); a door with no kept room behind it leads out of the
 house's kept rooms (to the outside, or into a room the import left out) and counts as an
 entrance. Rooms that no entrance reaches are left out, with a note.
 """
 from __future__ import annotations
 
-from ..house import House, HouseDoor, across
+from ..house import Floors, House, HouseDoor, across
 from ..scene import Room
 from ..thresholds import OPENING_TOLERANCE
 
@@ -25,25 +26,22 @@ def house_of(rooms: dict[str, Room], house_id: str = '') -> tuple[House | None, 
     """The house of a house's imported ``rooms`` (by id, in the house's frame), without
     their doors' duplicates, and a note for each room or house left out."""
     doors: list[HouseDoor] = []
+    ids = list(rooms)
+    floors = Floors(rooms.values())
     taken: dict[str, list] = {rid: [] for rid in rooms}      # door copies already joined
-    for rid, room in rooms.items():
+    for k, (rid, room) in enumerate(rooms.items()):
         for door in room.doors:
             if any(door is t for t in taken[rid]):
                 continue
             wall = room.wall_of(door, OPENING_TOLERANCE)
-            behind = None
-            for other, oroom in rooms.items():
-                if other == rid:
-                    continue
-                moved = (door if oroom.wall_of(door, OPENING_TOLERANCE) is not None
-                         else across(oroom, door, wall))
-                if moved is not None:
-                    behind = (other, moved)
-                    break
-            if behind is None:
+            behind = floors.behind(door, wall, k)
+            other = ids[behind[0]] if behind else None
+            moved = None if other is None else (
+                door if rooms[other].wall_of(door, OPENING_TOLERANCE) is not None
+                else across(rooms[other], door, wall))
+            if moved is None:
                 doors.append(HouseDoor((rid,), door))
                 continue
-            other, moved = behind
             twin = next((d for d in rooms[other].doors if _same(d, moved)
                          and not any(d is t for t in taken[other])), None)
             if twin is not None:
