@@ -5,7 +5,9 @@ its walls); a door between two rooms is in both rooms' ``doors``, an entrance (a
 outside) in its one room's. ``schema.parse_house_layout`` makes a House from a house layout
 (``msg_schemas/house_layout.schema.json``) after checking that the rooms do not overlap,
 that each door lies on a wall its rooms share (an entrance on an outside wall) and that every
-room can be reached from an entrance; ``House.to_dict`` writes the layout back.
+room can be reached from an entrance; ``House.to_dict`` writes the layout back. A
+``HouseScene`` is a furnished house (``msg_schemas/house_scene.schema.json``): each room's
+``Scene``, its objects in that room's frame, which is the house's.
 """
 from __future__ import annotations
 
@@ -16,7 +18,7 @@ from typing import Any
 import numpy as np
 import shapely
 
-from .scene import Opening, Room, Wall
+from .scene import Opening, PlacedObject, Room, Scene, Wall
 from .thresholds import MAX_WALL_THICKNESS, OPENING_TOLERANCE
 
 
@@ -139,3 +141,27 @@ class House:
         if 'request_id' in self.meta:
             out['request_id'] = self.meta['request_id']
         return out
+
+
+@dataclass
+class HouseScene:
+    """A furnished house: each room's scene by room id (its room as ``house`` has it) and
+    free-form metadata."""
+
+    house: House
+    scenes: dict[str, Scene]
+    meta: dict[str, Any] = field(default_factory=dict)
+
+    def objects(self) -> list[tuple[str, PlacedObject]]:
+        """(room id, object) of every object, room by room in the layout's order."""
+        return [(rid, o) for rid in self.house.rooms for o in self.scenes[rid].objects]
+
+    def to_dict(self) -> dict[str, Any]:
+        """The house scene (``msg_schemas/house_scene.schema.json``): the house layout with
+        each room's objects in that room."""
+        d = self.house.to_dict()
+        for room in d['rooms']:
+            room['objects'] = [o.to_dict() for o in self.scenes[room['id']].objects]
+        if self.meta:
+            d['meta'] = dict(self.meta)
+        return d

@@ -24,6 +24,7 @@ from matplotlib.patches import Arc, Patch
 from matplotlib.patches import Polygon as PolygonPatch
 from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
 import numpy as np
+import shapely
 from shapely import get_parts
 
 from .categories import CATEGORIES, PAPER, Vocabulary
@@ -167,6 +168,38 @@ def save_png(scene: Scene, path: str | os.PathLike, dpi: int = DEFAULT_DPI,
     fig = Figure(figsize=figsize, dpi=dpi)
     ax = fig.add_axes((0.08, 0.08, 0.6, 0.84) if legend else (0.1, 0.08, 0.85, 0.84))
     draw_scene(scene, ax=ax, legend=legend, title=title, vocabulary=vocabulary)
+    fig.savefig(path, dpi=dpi, format='png')
+    return os.fspath(path)
+
+
+def save_house_png(house, path: str | os.PathLike, dpi: int = DEFAULT_DPI,
+                   title: str | None = None, vocabulary: Vocabulary = PAPER) -> str:
+    """Write a picture of a furnished house (``house.HouseScene``) to ``path``: every room
+    with its objects, each room's id and type at its centre, one legend. Returns the path."""
+    scenes = [house.scenes[rid] for rid in house.house.rooms]
+    x0, y0, x1, y1 = shapely.MultiPolygon([s.room.polygon for s in scenes]).bounds
+    width = 7.0
+    height = max(3.0, min(12.0, width * (y1 - y0 + 1.1) / max(x1 - x0 + 0.7, 1e-6)))
+    fig = Figure(figsize=(width + 2.2, height), dpi=dpi)
+    ax = fig.add_axes((0.08, 0.06, 0.68, 0.88))
+    for rid, scene in zip(house.house.rooms, scenes, strict=True):
+        draw_scene(scene, ax=ax, legend=False, title='', scale_bar=False, vocabulary=vocabulary)
+        c = scene.room.polygon.representative_point()
+        ax.text(c.x, c.y, f'{rid}\n{scene.room.room_type}', ha='center', va='center',
+                fontsize=7, color=(0.15, 0.15, 0.15), zorder=8,
+                bbox={'boxstyle': 'round,pad=0.2', 'fc': (1, 1, 1, 0.7), 'ec': 'none'})
+    pad = 0.35
+    ax.set_xlim(x0 - pad, x1 + pad)
+    ax.set_ylim(y0 - 0.75, y1 + pad)
+    ax.set_title(f'{len(scenes)} rooms, {sum(len(s) for s in scenes)} objects'
+                 if title is None else title, fontsize=10)
+    ax.add_artist(AnchoredSizeBar(ax.transData, 1.0, '1 m', 'lower right', pad=0.3,
+                                  borderpad=0.3, sep=2, frameon=False, size_vertical=0.03,
+                                  fontproperties={'size': 7}))
+    handles = _legend_handles(_present_categories(scenes), vocabulary)
+    if handles:
+        ax.legend(handles=handles, loc='upper left', bbox_to_anchor=(1.02, 1.0), fontsize=7,
+                  frameon=False, borderaxespad=0.0)
     fig.savefig(path, dpi=dpi, format='png')
     return os.fspath(path)
 

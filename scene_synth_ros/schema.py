@@ -43,7 +43,7 @@ from . import catalog
 from .categories import CATEGORIES, PAPER, RoomTypeSpec, Vocabulary
 from .errors import SceneSynthError, UnknownRoomType, number, quoted, with_article
 from .files import write_atomic
-from .house import HOUSE_OVERLAP, Floors, House, HouseDoor, across
+from .house import HOUSE_OVERLAP, Floors, House, HouseDoor, HouseScene, across
 from .limits import LimitExceeded, YamlError, check_tree, join, loads, loads_yaml
 from .paths import schema_dir
 from .render import RoomDoesNotFit, room_frame_box
@@ -68,6 +68,7 @@ SCHEMA_IDS = {
     'room_layout': _BASE + 'room_layout.schema.json',
     'placed_object': _BASE + 'placed_object.schema.json',
     'scene': _BASE + 'scene.schema.json',
+    'house_scene': _BASE + 'house_scene.schema.json',
     'house_layout': _BASE + 'house_layout.schema.json',
 }
 
@@ -692,6 +693,40 @@ def parse_house_layout(text_or_dict: Any, vocabulary: Vocabulary = PAPER) -> Hou
         raise
 
 
+def _house_scene_from_dict(d: Any, models: catalog.Catalog | None = None,
+                           vocabulary: Vocabulary = PAPER) -> HouseScene:
+    check_against_schema(d, 'house_scene')
+    layout = {k: v for k, v in d.items() if k != 'meta'}
+    layout['rooms'] = [{k: v for k, v in r.items() if k != 'objects'} for r in d['rooms']]
+    house = _house_from_dict(layout, vocabulary)
+    scenes = {}
+    for i, rd in enumerate(d['rooms']):
+        room = house.rooms[rd['id']]
+        scenes[rd['id']] = Scene(room, _build_objects(rd.get('objects', []), room,
+                                                      f'rooms[{i}].objects', models, vocabulary))
+    return HouseScene(house, scenes, dict(d.get('meta', {})))
+
+
+def parse_house_scene(text_or_dict: Any, models: catalog.Catalog | None = None,
+                      vocabulary: Vocabulary = PAPER) -> HouseScene:
+    """A house scene (JSON text, bytes or dict; ``msg_schemas/house_scene.schema.json``) as
+    a validated HouseScene: the house checked as ``parse_house_layout`` checks it, each
+    room's objects as ``parse_scene`` checks a room's."""
+    return _house_scene_from_dict(_load(text_or_dict), models, vocabulary)
+
+
+def dump_house_scene(scene: HouseScene, models: catalog.Catalog | None = None,
+                     vocabulary: Vocabulary = PAPER) -> str:
+    """The house scene as JSON text, validated first, as ``dump_scene`` does a room's."""
+    d = plain_json(scene.to_dict())
+    _house_scene_from_dict(d, models, vocabulary)
+    try:
+        return format_json(d)
+    except (TypeError, ValueError) as e:
+        raise SceneValidationError(
+            f'meta cannot be written as JSON: {" ".join(str(e).split())}', 'meta') from None
+
+
 def _scene_from_dict(d: Any, models: catalog.Catalog | None = None,
                      vocabulary: Vocabulary = PAPER) -> Scene:
     check_against_schema(d, 'scene')
@@ -740,7 +775,20 @@ def load_scene(path: str | os.PathLike, catalog: catalog.Catalog | None = None,
 
     I/O errors (a missing file, ...) propagate as OSError.
     """
+    layout = load_layout(path, catalog, vocabulary)
+    if isinstance(layout, House):
+        raise SceneValidationError('rooms: this is a house layout, and a room or scene is '
+                                   'expected here', 'rooms')
+    return layout
+
+
+def load_layout(path: str | os.PathLike, catalog: catalog.Catalog | None = None,
+                vocabulary: Vocabulary = PAPER) -> Scene | House:
+    """Read a layout file: a house layout (a top level with ``"rooms"``) as a House, else
+    as ``load_scene`` reads it."""
     d = _load(Path(path).read_text(encoding='utf-8'), yaml_ok=True)
+    if isinstance(d, dict) and 'rooms' in d:
+        return _house_from_dict(d, vocabulary)
     if isinstance(d, dict) and 'room' not in d:
         return _layout_to_scene(d, catalog, vocabulary)
     return _scene_from_dict(d, catalog, vocabulary)

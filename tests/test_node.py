@@ -5,10 +5,8 @@ Every node gets a ROS domain of its own, so tests (and test runs) do not hear ea
 from __future__ import annotations
 
 from dataclasses import fields
-import gc
 import json
 import math
-import multiprocessing
 import os
 from pathlib import Path
 import shutil

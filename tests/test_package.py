@@ -69,7 +69,7 @@ def test_wheel_installs_the_ament_data_files(wheel):
     data = 'scene_synth_ros-0.1.0.data/data/'
     assert data + 'share/ament_index/resource_index/packages/scene_synth_ros' in names
     assert data + 'share/scene_synth_ros/package.xml' in names
-    for schema in ('room_layout', 'placed_object', 'scene'):
+    for schema in ('room_layout', 'placed_object', 'scene', 'house_layout', 'house_scene'):
         assert f'{data}share/scene_synth_ros/msg_schemas/{schema}.schema.json' in names
     assert any(n.startswith(data + 'share/scene_synth_ros/examples/') for n in names)
     assert 'scene_synth_ros/corpus/calibration.json' in names

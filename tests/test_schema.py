@@ -69,7 +69,8 @@ def assert_one_sentence(err: SceneValidationError, path: str):
 
 # ----------------------------------------------------------------------------- schema files
 
-@pytest.mark.parametrize('name', ['room_layout', 'placed_object', 'scene', 'house_layout'])
+@pytest.mark.parametrize('name', ['room_layout', 'placed_object', 'scene', 'house_layout',
+                                  'house_scene'])
 def test_schema_files_are_valid_2020_12(name):
     with open(schema_dir() / f'{name}.schema.json', encoding='utf-8') as f:
         doc = json.load(f)

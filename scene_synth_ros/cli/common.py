@@ -64,6 +64,17 @@ def load_scene_file(path: str, catalog=None, vocabulary: Vocabulary = PAPER):
         raise UserError(f'{path}: {e}') from None
 
 
+def load_layout_file(path: str, catalog=None, vocabulary: Vocabulary = PAPER):
+    """``load_scene_file`` that also reads a house layout, as a ``house.House``."""
+    from ..schema import SceneValidationError, load_layout
+    try:
+        return load_layout(path, catalog, vocabulary)
+    except FileNotFoundError:
+        raise UserError(f'{path}: no such file') from None
+    except SceneValidationError as e:
+        raise UserError(f'{path}: {e}') from None
+
+
 def object_table(objects, title: str = '') -> str:
     """Objects one per line: id, category, model, position, yaw, size and support."""
     lines = [title] if title else []

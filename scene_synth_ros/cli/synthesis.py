@@ -14,6 +14,7 @@ from .common import (
     UserError,
     flag_value,
     load_catalog,
+    load_layout_file,
     load_scene_file,
     object_table,
     robot_from,
@@ -176,7 +177,11 @@ def cmd_generate(args) -> int:
     _one_room_only(args)
     synth = _synthesizer(args)
     if args.layout:
-        room = load_scene_file(args.layout, vocabulary=synth.vocabulary).room
+        from ..house import House
+        layout = load_layout_file(args.layout, vocabulary=synth.vocabulary)
+        if isinstance(layout, House):
+            return _generate_house(args, synth, layout)
+        room = layout.room
         title = f'{Path(args.layout).stem} (seed {args.seed})'
     else:
         from ..corpus.generate import first_shell
@@ -197,6 +202,34 @@ def cmd_generate(args) -> int:
         print(line)
     write_scene(result.scene, args.out, args.png, title,
                 load_catalog(args.catalog, synth.vocabulary), synth.vocabulary)
+    return 0
+
+
+def _generate_house(args, synth, house) -> int:
+    """``generate --layout`` of a house layout: every room furnished, in lockstep."""
+    from ..geometry import check_scene
+    from ..house_synth import furnish_house
+    result = furnish_house(synth, house, args.seed)
+    for rid, r in result.rooms.items():
+        room = house.rooms[rid]
+        print(f'{rid} ({room.room_type}, {room.area:.1f} m2): {len(r.scene.objects)} objects; '
+              f'physical check: {check_scene(r.scene, r.allowance).summary()}')
+    print(f'{len(result.scene.objects())} objects in {len(house.rooms)} rooms, '
+          f'{result.seconds:.3f} s')
+    print(f'robot: {result.robot_sentence()}')
+    models = load_catalog(args.catalog, synth.vocabulary)
+    if args.out:
+        from ..files import write_atomic
+        from ..schema import dump_house_scene
+        Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+        write_atomic(args.out, dump_house_scene(result.scene, models, synth.vocabulary) + '\n')
+        print(f'wrote {args.out}')
+    if args.png:
+        from ..plot import save_house_png
+        Path(args.png).parent.mkdir(parents=True, exist_ok=True)
+        save_house_png(result.scene, args.png, title=f'{Path(args.layout).stem} (seed '
+                       f'{args.seed})', vocabulary=synth.vocabulary)
+        print(f'wrote {args.png}')
     return 0
 
 

@@ -1,0 +1,80 @@
+"""Furnishing a whole house: every room of a house layout by its own room type's networks,
+the rooms in lockstep (``lockstep``), so that their forward passes are batched together.
+
+Each room is furnished as a room alone would be, with the doors on its walls: a door between
+two rooms is in both rooms' layouts, so its clearance is kept on both of its sides, and each
+room's robot promise (the robot drives between all its doors and reaches every object) joined
+with the house's doors, which ``schema.parse_house_layout`` checked lead from an entrance into
+every room, makes the house's: every room reachable from an entrance, every object's front
+reachable.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+import time
+from typing import Callable
+
+import numpy as np
+
+from . import lockstep
+from .errors import SceneSynthError, quoted
+from .house import House, HouseScene
+from .scene import Scene
+from .synth import Synthesis, Synthesizer
+
+
+class HouseSynthesisError(SceneSynthError, ValueError):
+    """A room of the house could not be furnished; the sentence names the room."""
+
+
+def room_seed(seed: int, index: int) -> int:
+    """The synthesis seed of room ``index`` (layout order) of a house furnished with
+    ``seed``: distinct for every room and house seed, the same on every machine."""
+    return int(np.random.SeedSequence([seed, index]).generate_state(1)[0])
+
+
+@dataclass
+class HouseSynthesis:
+    """The outcome of ``furnish_house``: the furnished house and each room's synthesis."""
+
+    scene: HouseScene
+    rooms: dict[str, Synthesis]
+    seconds: float
+
+    @property
+    def robot_kept(self) -> bool:
+        return all(r.robot is None or r.robot.kept for r in self.rooms.values())
+
+    def robot_sentence(self) -> str:
+        """One line: the promise kept in every room, or the first room that breaks it."""
+        for rid, r in self.rooms.items():
+            if r.robot is not None and not r.robot.kept:
+                return f'room {quoted(rid)}: {r.robot.sentence()}'
+        first = next(iter(self.rooms.values())).robot
+        who = f'a robot of radius {first.robot.radius:g} m' if first else 'the robot'
+        return (f'{who} comes in through the entrance, drives between the doors of every '
+                f'room and reaches every object')
+
+
+def furnish_house(synth: Synthesizer, house: House, seed: int = 0,
+                  cancel: Callable[[], bool] | None = None, width: int | None = None
+                  ) -> HouseSynthesis:
+    """Every room of ``house`` furnished from empty, room ``k`` (layout order) with
+    ``room_seed(seed, k)``, all in lockstep (at most ``width`` at a time; all by default).
+    A room that cannot be furnished (too large for its type, no weights for its type)
+    raises HouseSynthesisError naming it; ``cancel`` is handed to every room."""
+    t0 = time.perf_counter()
+    ids = list(house.rooms)
+
+    def furnish(k: int) -> Callable[[], Synthesis]:
+        return lambda: synth.generate(house.rooms[ids[k]], room_seed(seed, k), cancel)
+
+    results = lockstep.run([furnish(k) for k in range(len(ids))], width)
+    rooms: dict[str, Synthesis] = {}
+    for rid, out in zip(ids, results, strict=True):
+        if isinstance(out, Exception):
+            raise HouseSynthesisError(f'room {quoted(rid)}: {out}') from out
+        rooms[rid] = out
+    meta = {'generator': 'scene_synth_ros', 'seed': seed, **house.meta}
+    scenes = {rid: Scene(house.rooms[rid], r.scene.objects, {}) for rid, r in rooms.items()}
+    return HouseSynthesis(HouseScene(house, scenes, meta), rooms, time.perf_counter() - t0)

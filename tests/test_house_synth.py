@@ -1,0 +1,109 @@
+"""Whole houses furnished in one request (house_synth.furnish_house), the house scene
+(msg_schemas/house_scene.schema.json) and `scene-synth generate --layout HOUSE`."""
+import copy
+import json
+import shutil
+
+import pytest
+from test_house import HOUSE, one_sentence
+
+from scene_synth_ros.geometry import check_scene
+from scene_synth_ros.house_synth import HouseSynthesisError, furnish_house, room_seed
+from scene_synth_ros.paths import weights_dir
+from scene_synth_ros.schema import (
+    SceneValidationError,
+    dump_house_scene,
+    parse_house_layout,
+    parse_house_scene,
+)
+from scene_synth_ros.synth import Synthesizer
+
+
+@pytest.fixture(scope='module')
+def furnished(synth):
+    house = parse_house_layout(HOUSE)
+    return house, furnish_house(synth, house, seed=3)
+
+
+@pytest.fixture(scope='module')
+def synth():
+    return Synthesizer()
+
+
+def test_every_room_is_furnished_validly_by_its_type_with_both_sides_of_each_door_clear(
+        furnished):
+    house, result = furnished
+    assert list(result.rooms) == ['hall', 'bed', 'kitchen']
+    for rid, r in result.rooms.items():
+        scene = result.scene.scenes[rid]
+        assert scene.room is house.rooms[rid] and scene.objects == r.scene.objects
+        assert scene.objects, rid
+        # check_scene keeps every door of the room clear; the door between two rooms is
+        # in both rooms, so it is kept clear on both sides.
+        assert check_scene(scene, r.allowance).ok, (rid, check_scene(scene).summary())
+        assert r.robot.kept, (rid, r.robot.sentence())
+    assert result.robot_kept and 'reaches every object' in result.robot_sentence()
+    hall_door = next(d for d in house.doors if set(d.rooms) == {'hall', 'bed'})
+    assert hall_door.openings['hall'] in house.rooms['hall'].doors
+    assert hall_door.openings['bed'] in house.rooms['bed'].doors
+    cats = {rid: {o.category for o in s.objects} for rid, s in result.scene.scenes.items()}
+    assert cats['bed'] & {'double bed', 'single bed'}, cats
+    assert not cats['hall'] & {'double bed', 'single bed'}, cats
+
+
+def test_the_same_seed_gives_the_same_house_and_rooms_get_seeds_of_their_own(synth, furnished):
+    house, result = furnished
+    again = furnish_house(synth, house, seed=3)
+    assert again.scene.to_dict() == result.scene.to_dict()
+    other = furnish_house(synth, house, seed=4)
+    assert other.scene.to_dict() != result.scene.to_dict()
+    seeds = {room_seed(s, k) for s in range(20) for k in range(64)}
+    assert len(seeds) == 20 * 64
+
+
+def test_the_house_scene_round_trips_and_names_a_misplaced_object(furnished):
+    _, result = furnished
+    text = dump_house_scene(result.scene)
+    d = json.loads(text)
+    assert d['meta']['seed'] == 3 and [r['id'] for r in d['rooms']] == ['hall', 'bed', 'kitchen']
+    assert all('objects' in r for r in d['rooms'])
+    back = parse_house_scene(text)
+    assert back.to_dict() == result.scene.to_dict()
+    assert [rid for rid, _ in back.objects()] == [rid for rid, _ in result.scene.objects()]
+    wrong = copy.deepcopy(d)
+    obj = wrong['rooms'][1]['objects'][0]
+    obj['position'] = [20.0, 20.0, obj['position'][2]]
+    with pytest.raises(SceneValidationError) as err:
+        parse_house_scene(wrong)
+    assert one_sentence(err.value, err.value.path).startswith('rooms[1].objects[0]')
+    wrong = copy.deepcopy(d)
+    wrong['rooms'][0]['objects'][0]['colour'] = 'red'
+    with pytest.raises(SceneValidationError) as err:
+        parse_house_scene(wrong)
+    assert 'colour' in one_sentence(err.value, err.value.path)
+
+
+def test_a_room_without_weights_is_named(tmp_path):
+    shutil.copy(weights_dir() / 'bedroom.pt', tmp_path / 'bedroom.pt')
+    synth = Synthesizer(tmp_path)
+    with pytest.raises(HouseSynthesisError) as err:
+        furnish_house(synth, parse_house_layout(HOUSE), seed=0)
+    msg = str(err.value)
+    assert msg.startswith("room 'hall': ") and '\n' not in msg and len(msg) <= 400, msg
+
+
+def test_the_command_furnishes_a_house_layout_and_draws_it(cli, tmp_path):
+    layout = tmp_path / 'house.json'
+    layout.write_text(json.dumps(HOUSE))
+    out, png = tmp_path / 'house_scene.json', tmp_path / 'house.png'
+    r = cli('generate', '--layout', str(layout), '--seed', '3', '--out', str(out),
+            '--png', str(png))
+    assert r.returncode == 0, r.stderr
+    assert 'bed (bedroom, 14.4 m2):' in r.stdout and 'robot: ' in r.stdout
+    scene = parse_house_scene(out.read_text())
+    assert sorted(scene.scenes) == ['bed', 'hall', 'kitchen'] and scene.objects()
+    assert png.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
+    # A house where one room is expected says so in one line.
+    r = cli('complete', str(layout), '--out', str(tmp_path / 'x.json'), ok=False)
+    assert r.returncode == 2 and 'house layout' in r.stderr and r.stderr.count('\n') == 1, \
+        r.stderr
