@@ -5,7 +5,13 @@ from __future__ import annotations
 from concurrent.futures import ProcessPoolExecutor
 import multiprocessing as mp
 from multiprocessing.pool import Pool
+import os
+import threading
+import time
 from typing import Callable, Iterable
+
+# Seconds between a worker's looks at whether its parent is still there.
+PARENT_POLL = 1.0
 
 
 def _context(spawn: bool = False):
@@ -18,6 +24,21 @@ def _context(spawn: bool = False):
     return mp.get_context('fork' if fork else 'spawn')
 
 
+def _exit_with(parent: int) -> None:
+    while os.getppid() == parent:
+        time.sleep(PARENT_POLL)
+    os._exit(1)
+
+
+def _watched(parent: int, initializer: Callable | None, initargs: tuple) -> None:
+    # A parent killed outright (SIGTERM, SIGKILL, out of memory) runs no clean-up: its
+    # workers, reparented, went on with their tasks for as long as they took (a training
+    # module: hours), writing into a run another process may resume. They end instead.
+    threading.Thread(target=_exit_with, args=(parent,), name='parent-watch', daemon=True).start()
+    if initializer is not None:
+        initializer(*initargs)
+
+
 def process_pool(workers: int, initializer: Callable | None = None,
                  initargs: Iterable = ()) -> Pool:
     """A pool of ``workers`` processes, each running ``initializer(*initargs)`` first."""
@@ -28,8 +49,11 @@ def process_executor(workers: int, initializer: Callable | None = None,
                      initargs: Iterable = (), spawn: bool = False) -> ProcessPoolExecutor:
     """``process_pool`` as an executor: a worker that dies (killed, out of memory) breaks
     it with ``BrokenProcessPool`` where a ``Pool`` would wait for ever for its task.
-    ``spawn``: spawned workers even where the platform can fork (workers that use CUDA)."""
-    return ProcessPoolExecutor(workers, _context(spawn), initializer, tuple(initargs))
+    ``spawn``: spawned workers even where the platform can fork (workers that use CUDA).
+    A worker whose parent is gone without shutting it down ends within ``PARENT_POLL``
+    seconds."""
+    return ProcessPoolExecutor(workers, _context(spawn), _watched,
+                               (os.getpid(), initializer, tuple(initargs)))
 
 
 def process_queue(spawn: bool = False) -> mp.Queue:
