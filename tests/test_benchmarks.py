@@ -246,3 +246,9 @@ def test_house_plans_tiny():
     assert 'at the limits' in out and 'refused: ' in out, out
     assert 'suncg: 1 rooms kept, 1 house layouts of 1 rooms, 0 rooms or houses left out' \
         in out, out
+
+
+def test_house_synth_tiny():
+    out = run('house_synth.py', '-n', '1')
+    assert 'house 0 (plan 0): ' in out and 's in lockstep' in out, out
+    assert '1 houses: median ' in out and '1 of 1 with every room valid' in out, out

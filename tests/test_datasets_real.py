@@ -210,6 +210,27 @@ def test_every_real_room_of_a_known_type_is_accepted_and_furnished_validly(impor
     assert furnished >= 0.95 * len(rooms)
 
 
+@pytest.mark.parametrize('fmt', ['3dfront', 'suncg'])
+def test_the_real_houses_of_several_rooms_are_furnished_validly_room_by_room(imported, fmt):
+    """Every room of each real house written back as a house layout, furnished together
+    (``house_synth.furnish_house``): valid in every room, with the robot promise kept."""
+    import json
+
+    from scene_synth_ros.geometry import check_scene
+    from scene_synth_ros.house_synth import furnish_house
+    from scene_synth_ros.schema import parse_house_layout
+    from scene_synth_ros.synth import Synthesizer
+    _, folder = imported[fmt]
+    synth = Synthesizer()
+    for path in sorted((folder / 'houses').glob('*.json')):
+        house = parse_house_layout(json.loads(path.read_text()))
+        result = furnish_house(synth, house, seed=0)
+        for rid, r in result.rooms.items():
+            check = check_scene(r.scene, r.allowance)
+            assert check.ok, (path.name, rid, check.summary())
+            assert r.robot.kept, (path.name, rid, r.robot.sentence())
+
+
 @pytest.mark.parametrize('fmt', FORMATS)
 def test_each_real_house_is_written_back_as_an_empty_house_layout(imported, fmt):
     """``scene-synth import ... --layouts``: a house's kept rooms, in its frame, joined by

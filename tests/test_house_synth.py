@@ -107,3 +107,16 @@ def test_the_command_furnishes_a_house_layout_and_draws_it(cli, tmp_path):
     r = cli('complete', str(layout), '--out', str(tmp_path / 'x.json'), ok=False)
     assert r.returncode == 2 and 'house layout' in r.stderr and r.stderr.count('\n') == 1, \
         r.stderr
+
+
+def test_procedural_house_plans_are_furnished_validly_room_by_room(synth):
+    from scene_synth_ros.corpus.house_plan import house_plan
+    for i in range(3):
+        house = house_plan(0, i)
+        result = furnish_house(synth, house, seed=i)
+        assert list(result.rooms) == list(house.rooms)
+        for rid, r in result.rooms.items():
+            check = check_scene(r.scene, r.allowance)
+            assert check.ok, (i, rid, check.summary())
+            assert r.robot.kept, (i, rid, r.robot.sentence())
+        assert sum(len(s.objects) for s in result.scene.scenes.values()) >= 2 * len(house.rooms)
