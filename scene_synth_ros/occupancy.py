@@ -27,6 +27,7 @@ from shapely.geometry import Polygon
 from .export.architecture import WALL_THICKNESS, wall_boxes
 from .files import write_atomic
 from .geometry import free_space
+from .house import HouseScene
 from .rules.robot import Robot, driven_floor
 from .scene import Scene, box_corners
 from .synth_config import MapConfig
@@ -72,13 +73,32 @@ class OccupancyGrid:
         return np.meshgrid(cols, rows)
 
 
-def occupancy_grid(scene: Scene, robot: Robot | None = None,
+def occupancy_grid(scene: Scene | HouseScene, robot: Robot | None = None,
                    config: MapConfig | None = None) -> OccupancyGrid:
-    """The occupancy grid of ``scene`` for ``robot`` (default: ``Robot()``) with ``config``
-    (default: ``MapConfig()``); see the module docstring."""
+    """The occupancy grid of ``scene``, a room or a whole house (``house.HouseScene``: each
+    room's walls, objects and driven floor, the doors between rooms open), for ``robot``
+    (default: ``Robot()``) with ``config`` (default: ``MapConfig()``); see the module
+    docstring."""
     robot = robot or Robot()
     config = config or MapConfig()
-    h = config.map_scan_height
+    rooms = list(scene.scenes.values()) if isinstance(scene, HouseScene) else [scene]
+    parts = [_room_cells(s, robot, config.map_scan_height) for s in rooms]
+    solid = shapely.union_all([p[0] for p in parts])
+    free = shapely.union_all([p[1] for p in parts])
+    bounds = shapely.union_all([*(s.room.polygon for s in rooms), solid]).bounds
+    lo = np.asarray(bounds[:2]) - MARGIN
+    hi = np.asarray(bounds[2:]) + MARGIN
+    r = config.map_resolution
+    shape = tuple(int(np.ceil(v)) for v in (hi - lo)[::-1] / r)
+    grid = OccupancyGrid(np.full(shape, UNKNOWN, dtype=np.int8), r, (float(lo[0]), float(lo[1])))
+    x, y = grid.centres()
+    grid.data[shapely.contains_xy(free, x, y)] = FREE
+    grid.data[shapely.contains_xy(solid, x, y)] = OCCUPIED
+    return grid
+
+
+def _room_cells(scene: Scene, robot: Robot, h: float):
+    """(what a laser at height ``h`` hits, the floor the robot drives over) of one room."""
     room = scene.room
     seen = [Polygon(box_corners(b.centre[0], b.centre[1], b.yaw, b.size[1], b.size[0]))
             for b in wall_boxes(room)
@@ -97,17 +117,7 @@ def occupancy_grid(scene: Scene, robot: Robot | None = None,
         centre = np.asarray(door.position) - wall.normal * WALL_THICKNESS / 2
         gaps.append(Polygon(box_corners(centre[0], centre[1], wall.inward_yaw, door.width,
                                         WALL_THICKNESS)))
-    free = shapely.union_all([free, *gaps])
-    bounds = shapely.union_all([room.polygon, solid]).bounds
-    lo = np.asarray(bounds[:2]) - MARGIN
-    hi = np.asarray(bounds[2:]) + MARGIN
-    r = config.map_resolution
-    shape = tuple(int(np.ceil(v)) for v in (hi - lo)[::-1] / r)
-    grid = OccupancyGrid(np.full(shape, UNKNOWN, dtype=np.int8), r, (float(lo[0]), float(lo[1])))
-    x, y = grid.centres()
-    grid.data[shapely.contains_xy(free, x, y)] = FREE
-    grid.data[shapely.contains_xy(solid, x, y)] = OCCUPIED
-    return grid
+    return solid, shapely.union_all([free, *gaps])
 
 
 def write_map(grid: OccupancyGrid, path: str | Path) -> Path:

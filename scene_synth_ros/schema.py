@@ -776,19 +776,19 @@ def load_scene(path: str | os.PathLike, catalog: catalog.Catalog | None = None,
     I/O errors (a missing file, ...) propagate as OSError.
     """
     layout = load_layout(path, catalog, vocabulary)
-    if isinstance(layout, House):
+    if isinstance(layout, HouseScene):
         raise SceneValidationError('rooms: this is a house layout, and a room or scene is '
                                    'expected here', 'rooms')
     return layout
 
 
 def load_layout(path: str | os.PathLike, catalog: catalog.Catalog | None = None,
-                vocabulary: Vocabulary = PAPER) -> Scene | House:
-    """Read a layout file: a house layout (a top level with ``"rooms"``) as a House, else
-    as ``load_scene`` reads it."""
+                vocabulary: Vocabulary = PAPER) -> Scene | HouseScene:
+    """Read a layout or scene file: a house (a top level with ``"rooms"``: a house layout,
+    or a house scene with its objects) as a HouseScene, else as ``load_scene`` reads it."""
     d = _load(Path(path).read_text(encoding='utf-8'), yaml_ok=True)
     if isinstance(d, dict) and 'rooms' in d:
-        return _house_from_dict(d, vocabulary)
+        return _house_scene_from_dict(d, catalog, vocabulary)
     if isinstance(d, dict) and 'room' not in d:
         return _layout_to_scene(d, catalog, vocabulary)
     return _scene_from_dict(d, catalog, vocabulary)

@@ -5,6 +5,7 @@ import json
 import shutil
 
 import pytest
+import shapely
 from test_house import HOUSE, one_sentence
 
 from scene_synth_ros.geometry import check_scene
@@ -120,3 +121,31 @@ def test_procedural_house_plans_are_furnished_validly_room_by_room(synth):
             assert check.ok, (i, rid, check.summary())
             assert r.robot.kept, (i, rid, r.robot.sentence())
         assert sum(len(s.objects) for s in result.scene.scenes.values()) >= 2 * len(house.rooms)
+
+
+def test_the_map_of_a_house_joins_its_rooms_through_their_doors(furnished, cli, tmp_path):
+    from test_occupancy import _reachable
+
+    from scene_synth_ros.occupancy import FREE, OCCUPIED, occupancy_grid
+    from scene_synth_ros.synth_config import MapConfig
+    house, result = furnished
+    grid = occupancy_grid(result.scene)
+    h = MapConfig().map_scan_height
+    for rid, o in result.scene.objects():
+        if o.position[2] <= h <= o.top:
+            assert grid.data[grid.cell_of(*o.position[:2])] == OCCUPIED, (rid, o.id)
+    # A planner starting just inside the entrance reaches every room, through every door.
+    entrance = house.entrances[0]
+    hall = house.rooms[entrance.rooms[0]]
+    start = hall.wall_of(entrance.opening).normal * 0.3 + entrance.opening.position
+    reached = _reachable(grid, grid.cell_of(*start))
+    x, y = grid.centres()
+    for rid, room in house.rooms.items():
+        inside = shapely.contains_xy(room.polygon, x, y) & (grid.data == FREE)
+        assert (reached & inside).any(), rid
+    for door in house.doors:
+        assert reached[grid.cell_of(*door.opening.position)], door.rooms
+    scene_file = tmp_path / 'house_scene.json'
+    scene_file.write_text(dump_house_scene(result.scene))
+    r = cli('map', str(scene_file), '--out', str(tmp_path / 'map.yaml'))
+    assert (tmp_path / 'map.pgm').is_file() and f'{grid.width} x {grid.height} cells' in r.stdout

@@ -65,7 +65,8 @@ def load_scene_file(path: str, catalog=None, vocabulary: Vocabulary = PAPER):
 
 
 def load_layout_file(path: str, catalog=None, vocabulary: Vocabulary = PAPER):
-    """``load_scene_file`` that also reads a house layout, as a ``house.House``."""
+    """``load_scene_file`` that also reads a house layout or scene, as a
+    ``house.HouseScene``."""
     from ..schema import SceneValidationError, load_layout
     try:
         return load_layout(path, catalog, vocabulary)

@@ -10,6 +10,7 @@ from .common import (
     data_set_option,
     flag_value,
     load_catalog,
+    load_layout_file,
     load_scene_file,
     robot_from,
     robot_options,
@@ -58,7 +59,8 @@ def add_parser(sub) -> None:
                        description='Occupied where a wall or an object stands at the scan '
                        'height, free where the robot drives from the doors, unknown elsewhere '
                        '(docs/navigation.md).')
-    c.add_argument('scene', help='a scene JSON')
+    c.add_argument('scene', help='a scene JSON, or a house scene (scene-synth generate '
+                   '--layout HOUSE) for the map of the whole house')
     c.add_argument('--out', required=True, help='the map YAML to write; its PGM image goes '
                    'beside it, of the same name')
     for s, default in settings_of(MapConfig).values():
@@ -140,7 +142,7 @@ def cmd_map(args) -> int:
     robot = robot_from(args)
     config = MapConfig(**{name: flag_value(s, args)
                           for name, (s, _) in settings_of(MapConfig).items()})
-    scene = load_scene_file(args.scene, vocabulary=args.vocabulary)
+    scene = load_layout_file(args.scene, vocabulary=args.vocabulary)
     grid = occupancy_grid(scene, robot, config)
     Path(args.out).parent.mkdir(parents=True, exist_ok=True)
     path = write_map(grid, args.out)

@@ -177,10 +177,10 @@ def cmd_generate(args) -> int:
     _one_room_only(args)
     synth = _synthesizer(args)
     if args.layout:
-        from ..house import House
+        from ..house import HouseScene
         layout = load_layout_file(args.layout, vocabulary=synth.vocabulary)
-        if isinstance(layout, House):
-            return _generate_house(args, synth, layout)
+        if isinstance(layout, HouseScene):        # objects given are dropped, as a room's
+            return _generate_house(args, synth, layout.house)
         room = layout.room
         title = f'{Path(args.layout).stem} (seed {args.seed})'
     else:
