@@ -35,6 +35,9 @@ def main(argv=None) -> int:
     together, alone, whole = [], [], 0
     i = found = 0
     while found < args.n:
+        if i >= 100 * args.n:
+            print(f'no more plans of {args.rooms} rooms among the first {i}')
+            return 1
         house = house_plan(args.plan_seed, i)
         i += 1
         if args.rooms is not None and len(house.rooms) != args.rooms:

@@ -51,7 +51,7 @@ class HouseSynthesis:
             if r.robot is not None and not r.robot.kept:
                 return f'room {quoted(rid)}: {r.robot.sentence()}'
         first = next(iter(self.rooms.values())).robot
-        who = f'a robot of radius {first.robot.radius:g} m' if first else 'the robot'
+        who = first.who if first is not None else 'the robot'
         return (f'{who} comes in through the entrance, drives between the doors of every '
                 f'room and reaches every object')
 
@@ -63,6 +63,8 @@ def furnish_house(synth: Synthesizer, house: House, seed: int = 0,
     ``room_seed(seed, k)``, all in lockstep (at most ``width`` at a time; all by default).
     A room that cannot be furnished (too large for its type, no weights for its type)
     raises HouseSynthesisError naming it; ``cancel`` is handed to every room."""
+    if width is not None and width < 1:
+        raise ValueError(f'width must be at least 1, not {width}')
     t0 = time.perf_counter()
     ids = list(house.rooms)
 
@@ -72,8 +74,11 @@ def furnish_house(synth: Synthesizer, house: House, seed: int = 0,
     results = lockstep.run([furnish(k) for k in range(len(ids))], width)
     rooms: dict[str, Synthesis] = {}
     for rid, out in zip(ids, results, strict=True):
-        if isinstance(out, Exception):
+        # A room's bad input, named; a cancel or a bug goes up as it is.
+        if isinstance(out, SceneSynthError):
             raise HouseSynthesisError(f'room {quoted(rid)}: {out}') from out
+        if isinstance(out, BaseException):
+            raise out
         rooms[rid] = out
     meta = {'generator': 'scene_synth_ros', 'seed': seed, **house.meta}
     scenes = {rid: Scene(house.rooms[rid], r.scene.objects, {}) for rid, r in rooms.items()}

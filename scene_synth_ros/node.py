@@ -82,10 +82,11 @@ EXIT_STARTUP_FAILED = 1
 # calls and as many whole-room ones (server.RANK). Two more keep answering "busy", the
 # diagnostics timer and the subscriptions.
 EXECUTOR_THREADS = 2 * PARAMETERS['max_pending'][1][1] + 2
-# Seconds a stop waits for the room under way, then for the answers being sent: a node
-# destroyed while one is still sending prints an error at exit, and on a loaded machine two
-# seconds were not always enough. An idle node stops at once.
-STOP_WAIT = 6.0
+# Seconds a stop waits for the room under way, then again for the answers being sent: a
+# node destroyed while one is still sending prints an error at exit, and on a loaded machine
+# two seconds were not always enough. Both waits and the executor's 2 s stay under the 10 s
+# after which ros2 launch kills a node it asked to stop. An idle node stops at once.
+STOP_WAIT = 3.5
 
 # Fast DDS's profile for the node's own endpoints. rmw_fastrtps keeps every history payload
 # at the largest size it has held (PREALLOCATED_WITH_REALLOC), so the 1-7 MB layouts that the

@@ -31,6 +31,7 @@ from .house import HouseScene
 from .rules.robot import Robot, driven_floor
 from .scene import Scene, box_corners
 from .synth_config import MapConfig
+from .thresholds import OPENING_TOLERANCE
 
 # The values of ``OccupancyGrid.data``, as nav_msgs/OccupancyGrid has them.
 OCCUPIED, FREE, UNKNOWN = 100, 0, -1
@@ -84,7 +85,8 @@ def occupancy_grid(scene: Scene | HouseScene, robot: Robot | None = None,
     rooms = list(scene.scenes.values()) if isinstance(scene, HouseScene) else [scene]
     parts = [_room_cells(s, robot, config.map_scan_height) for s in rooms]
     solid = shapely.union_all([p[0] for p in parts])
-    free = shapely.union_all([p[1] for p in parts])
+    through = _through_walls(scene.house) if isinstance(scene, HouseScene) else []
+    free = shapely.union_all([p[1] for p in parts] + through)
     bounds = shapely.union_all([*(s.room.polygon for s in rooms), solid]).bounds
     lo = np.asarray(bounds[:2]) - MARGIN
     hi = np.asarray(bounds[2:]) + MARGIN
@@ -95,6 +97,24 @@ def occupancy_grid(scene: Scene | HouseScene, robot: Robot | None = None,
     grid.data[shapely.contains_xy(free, x, y)] = FREE
     grid.data[shapely.contains_xy(solid, x, y)] = OCCUPIED
     return grid
+
+
+def _through_walls(house) -> list[Polygon]:
+    """The passage of each door between two rooms from one room's wall to the other's: walls
+    back to back may stand a wall's thickness apart (``thresholds.MAX_WALL_THICKNESS``),
+    more than each room's own door gap spans."""
+    out = []
+    for door in house.doors:
+        if door.entrance:
+            continue
+        ends = []
+        for rid in door.rooms:
+            o = door.openings[rid]
+            wall = house.rooms[rid].wall_of(o, OPENING_TOLERANCE)
+            half = wall.direction * o.width / 2
+            ends += [np.asarray(o.position) - half, np.asarray(o.position) + half]
+        out.append(shapely.MultiPoint(ends).convex_hull)
+    return out
 
 
 def _room_cells(scene: Scene, robot: Robot, h: float):

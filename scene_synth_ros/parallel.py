@@ -41,8 +41,9 @@ def _watched(parent: int, initializer: Callable | None, initargs: tuple) -> None
 
 def process_pool(workers: int, initializer: Callable | None = None,
                  initargs: Iterable = ()) -> Pool:
-    """A pool of ``workers`` processes, each running ``initializer(*initargs)`` first."""
-    return _context().Pool(workers, initializer, tuple(initargs))
+    """A pool of ``workers`` processes, each running ``initializer(*initargs)`` first; a
+    worker whose parent is gone ends, as ``process_executor``'s do."""
+    return _context().Pool(workers, _watched, (os.getpid(), initializer, tuple(initargs)))
 
 
 def process_executor(workers: int, initializer: Callable | None = None,

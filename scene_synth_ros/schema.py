@@ -720,11 +720,7 @@ def dump_house_scene(scene: HouseScene, models: catalog.Catalog | None = None,
     """The house scene as JSON text, validated first, as ``dump_scene`` does a room's."""
     d = plain_json(scene.to_dict())
     _house_scene_from_dict(d, models, vocabulary)
-    try:
-        return format_json(d)
-    except (TypeError, ValueError) as e:
-        raise SceneValidationError(
-            f'meta cannot be written as JSON: {" ".join(str(e).split())}', 'meta') from None
+    return _formatted(d)
 
 
 def _scene_from_dict(d: Any, models: catalog.Catalog | None = None,
@@ -787,7 +783,7 @@ def load_layout(path: str | os.PathLike, catalog: catalog.Catalog | None = None,
     """Read a layout or scene file: a house (a top level with ``"rooms"``: a house layout,
     or a house scene with its objects) as a HouseScene, else as ``load_scene`` reads it."""
     d = _load(Path(path).read_text(encoding='utf-8'), yaml_ok=True)
-    if isinstance(d, dict) and 'rooms' in d:
+    if isinstance(d, dict) and 'rooms' in d and 'room' not in d and 'room_type' not in d:
         return _house_scene_from_dict(d, catalog, vocabulary)
     if isinstance(d, dict) and 'room' not in d:
         return _layout_to_scene(d, catalog, vocabulary)
@@ -800,6 +796,11 @@ def dump_scene(scene: Scene, catalog: catalog.Catalog | None = None,
     SceneValidationError, so nothing invalid is ever written)."""
     d = plain_json(scene.to_dict())
     _scene_from_dict(d, catalog, vocabulary)
+    return _formatted(d)
+
+
+def _formatted(d: dict) -> str:
+    """A validated scene's (or house scene's) dict as ``format_json`` text."""
     try:
         return format_json(d)
     except (TypeError, ValueError) as e:

@@ -60,6 +60,10 @@ def test_the_same_seed_gives_the_same_house_and_rooms_get_seeds_of_their_own(syn
     assert other.scene.to_dict() != result.scene.to_dict()
     seeds = {room_seed(s, k) for s in range(20) for k in range(64)}
     assert len(seeds) == 20 * 64
+    assert [r.scene.meta['seed'] for r in result.rooms.values()] == \
+        [room_seed(3, k) for k in range(len(house.rooms))]
+    with pytest.raises(ValueError, match='width must be at least 1'):
+        furnish_house(synth, house, seed=3, width=0)
 
 
 def test_the_house_scene_round_trips_and_names_a_misplaced_object(furnished):
@@ -149,3 +153,21 @@ def test_the_map_of_a_house_joins_its_rooms_through_their_doors(furnished, cli, 
     scene_file.write_text(dump_house_scene(result.scene))
     r = cli('map', str(scene_file), '--out', str(tmp_path / 'map.yaml'))
     assert (tmp_path / 'map.pgm').is_file() and f'{grid.width} x {grid.height} cells' in r.stdout
+
+
+def test_the_map_passes_doors_through_walls_a_wall_thickness_apart():
+    from test_occupancy import _reachable
+
+    from scene_synth_ros.house import HouseScene
+    from scene_synth_ros.occupancy import occupancy_grid
+    from scene_synth_ros.scene import Scene
+    d = copy.deepcopy(HOUSE)
+    d['rooms'][1]['floor'] = [[0, 1.8], [4, 1.8], [4, 5], [0, 5]]   # 0.4 m behind the hall's
+    house = parse_house_layout(d)
+    grid = occupancy_grid(HouseScene(house, {rid: Scene(r, []) for rid, r in
+                                             house.rooms.items()}))
+    entrance = house.entrances[0]
+    start = house.rooms['hall'].wall_of(entrance.opening).normal * 0.3 + \
+        entrance.opening.position
+    reached = _reachable(grid, grid.cell_of(*start))
+    assert reached[grid.cell_of(2.0, 3.5)]          # the middle of the bedroom

@@ -69,6 +69,18 @@ def assert_one_sentence(err: SceneValidationError, path: str):
 
 # ----------------------------------------------------------------------------- schema files
 
+def test_a_house_scenes_rooms_have_the_house_layouts_fields_and_their_objects():
+    with open(schema_dir() / 'house_layout.schema.json', encoding='utf-8') as f:
+        layout = json.load(f)
+    with open(schema_dir() / 'house_scene.schema.json', encoding='utf-8') as f:
+        scene = json.load(f)
+    room = layout['$defs']['house_room']
+    furnished = scene['$defs']['furnished_room']
+    assert set(furnished['properties']) == set(room['properties']) | {'objects'}
+    assert furnished['required'] == room['required']
+    assert set(scene['properties']) == set(layout['properties']) | {'meta'}
+
+
 @pytest.mark.parametrize('name', ['room_layout', 'placed_object', 'scene', 'house_layout',
                                   'house_scene'])
 def test_schema_files_are_valid_2020_12(name):

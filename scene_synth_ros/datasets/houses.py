@@ -34,11 +34,14 @@ def house_of(rooms: dict[str, Room], house_id: str = '') -> tuple[House | None, 
             if any(door is t for t in taken[rid]):
                 continue
             wall = room.wall_of(door, OPENING_TOLERANCE)
-            behind = floors.behind(door, wall, k)
-            other = ids[behind[0]] if behind else None
-            moved = None if other is None else (
-                door if rooms[other].wall_of(door, OPENING_TOLERANCE) is not None
-                else across(rooms[other], door, wall))
+            # The first room behind the wall whose own wall takes the door.
+            other = moved = None
+            for j in floors.behind(door, wall, k):
+                moved = (door if rooms[ids[j]].wall_of(door, OPENING_TOLERANCE) is not None
+                         else across(rooms[ids[j]], door, wall))
+                if moved is not None:
+                    other = ids[j]
+                    break
             if moved is None:
                 doors.append(HouseDoor((rid,), door))
                 continue

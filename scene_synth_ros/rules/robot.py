@@ -160,11 +160,17 @@ class RobotReport:
     def kept(self) -> bool:
         return self.doors_connected and not self.unreachable
 
-    def sentence(self) -> str:
-        """One line: the promise kept, or what breaks it."""
+    @property
+    def who(self) -> str:
+        """The robot as the sentences name it."""
         who = f'a robot of radius {self.robot.radius:g} m'
         if self.robot.clearance:
             who += f' keeping {self.robot.clearance:g} m clear'
+        return who
+
+    def sentence(self) -> str:
+        """One line: the promise kept, or what breaks it."""
+        who = self.who
         if not self.doors:
             return f'no doors: {who} has no way in, so only the doors half of the promise ' \
                    f'applies'
