@@ -602,6 +602,28 @@ def steady_middleware() -> Path | None:
     return Path(name)
 
 
+def _settle(executor: MultiThreadedExecutor, timeout: float) -> None:
+    """Let every callback the executor has handed to its threads run to its end, and take
+    its outcome, before the executor and node go.
+
+    A callback still running when the node is destroyed, or one handed over by the last
+    spin that starts only after ``Executor.shutdown`` has destroyed its guard condition,
+    fails with "cannot use Destroyable", which rclpy prints at exit as an exception never
+    retrieved. ``Executor.shutdown`` is meant to wait for them, but in Jazzy's rclpy it sets
+    its flag before testing it and returns at once, and its count of work in progress
+    starts only once a callback runs; so wait on the handed-over callbacks themselves."""
+    handlers = list(getattr(executor, '_futures', ()))
+    deadline = time.monotonic() + timeout
+    while any(not h.done() for h in handlers) and time.monotonic() < deadline:
+        time.sleep(0.01)
+    for h in handlers:
+        if h.done():
+            try:
+                h.result()
+            except Exception:   # noqa: BLE001 - a callback cut short by the shutdown itself
+                pass
+
+
 def main(args: list[str] | None = None) -> int:
     handled = _command_line(args)
     if handled is not None:
@@ -633,14 +655,7 @@ def main(args: list[str] | None = None) -> int:
         # threads, which its shutdown waits for.
         if node.server is not None:
             node.server.close(timeout=STOP_WAIT)
-        # Then let the callbacks just answered send their responses before the node goes:
-        # one still sending when it is destroyed fails with "cannot use Destroyable", which
-        # Python prints at exit as an exception never retrieved. Executor.shutdown is meant
-        # to wait for them, but in Jazzy's rclpy it sets its flag before testing it and
-        # returns at once, so wait on the executor's own count of work in progress.
-        work = getattr(executor, '_work_tracker', None)
-        if work is not None:
-            work.wait(STOP_WAIT)
+        _settle(executor, STOP_WAIT)
         executor.shutdown(timeout_sec=2.0)
     except StartupError as e:
         print(f'{NODE_NAME}: cannot start: {e}', file=sys.stderr)
