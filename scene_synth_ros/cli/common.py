@@ -54,25 +54,26 @@ def load_scene_file(path: str, catalog=None, vocabulary: Vocabulary = PAPER):
     """The scene (or room layout) in ``path``, its model ids those of ``catalog`` (default:
     the procedural catalog), its room types and categories those of ``vocabulary``; an
     error names the file."""
-    from ..schema import SceneValidationError, load_scene
-    try:
-        return load_scene(path, catalog, vocabulary)
-    except FileNotFoundError:
-        raise UserError(f'{path}: no such file') from None
-    except SceneValidationError as e:
-        # The validator says what is wrong inside the document, not which document.
-        raise UserError(f'{path}: {e}') from None
+    from ..schema import load_scene
+    return _named(path, load_scene, catalog, vocabulary)
 
 
 def load_layout_file(path: str, catalog=None, vocabulary: Vocabulary = PAPER):
     """``load_scene_file`` that also reads a house layout or scene, as a
     ``house.HouseScene``."""
-    from ..schema import SceneValidationError, load_layout
+    from ..schema import load_layout
+    return _named(path, load_layout, catalog, vocabulary)
+
+
+def _named(path: str, read, *args):
+    """``read(path, *args)``, its errors as UserErrors that name the file."""
+    from ..schema import SceneValidationError
     try:
-        return load_layout(path, catalog, vocabulary)
+        return read(path, *args)
     except FileNotFoundError:
         raise UserError(f'{path}: no such file') from None
     except SceneValidationError as e:
+        # The validator says what is wrong inside the document, not which document.
         raise UserError(f'{path}: {e}') from None
 
 
