@@ -4,10 +4,14 @@ Runs ``--steps`` training steps of every module of one room type (default bedroo
 type with the most categories) with one torch thread, exactly as ``scene-synth train`` does
 (same batches, losses and, for dimensions, the discriminator), and projects the
 configuration's schedule from the measured rates: one room type and all four, sequentially
-on one core. Corpus generation and validation are not included.
+on one core. Corpus generation and validation are not included. The training rooms are
+``--rooms`` corpus rooms (sizes as the corpus draws them); ``--size-buckets N`` batches the
+category and location modules' rooms by size, at least N rooms a group (default: the
+configuration's ``train.size_buckets``; 0: batches of any rooms); ``--real-sizes`` draws
+the rooms at real rooms' sizes (``train.real_sizes``), up to 16 m.
 
     .venv/bin/python benchmarks/bench_training.py [--room-type bedroom] [--steps 30]
-        [--config config/compact.yaml]
+        [--config config/compact.yaml] [--rooms 300] [--size-buckets N] [--modules ...]
 """
 import argparse
 from pathlib import Path
@@ -28,20 +32,33 @@ def main():
     ap.add_argument('--room-type', default='bedroom')
     ap.add_argument('--steps', type=int, default=30)
     ap.add_argument('--config', default=str(default_config_path()))
+    ap.add_argument('--rooms', type=int, default=300)
+    ap.add_argument('--size-buckets', type=int, default=None)
+    ap.add_argument('--real-sizes', action='store_true',
+                    help='corpus rooms sized as real rooms (train.real_sizes)')
+    ap.add_argument('--modules', default=','.join(NETWORKS))
     args = ap.parse_args()
     torch.set_num_threads(1)
     cfg = PipelineConfig.from_yaml(args.config)
-    cfg.train.train_rooms, cfg.train.val_rooms = 300, 10
+    cfg.train.train_rooms, cfg.train.val_rooms = args.rooms, 10
+    cfg.train.real_sizes = cfg.train.real_sizes or args.real_sizes
+    buckets = cfg.train.size_buckets if args.size_buckets is None else args.size_buckets
     corpus = load_corpus(args.room_type, cfg, workers=1)
     m = cfg.model
-    src = ExampleSource(args.room_type, corpus.train, m.resolution, m.location_resolution,
-                        target_radius=cfg.train.location_target_radius)
-    val = ExampleSource(args.room_type, corpus.val, m.resolution, m.location_resolution)
     nets = build_networks(args.room_type, m, seed=0)
+    multiple = nets['location'].multiple
+    src = ExampleSource(args.room_type, corpus.train, m.resolution, m.location_resolution,
+                        target_radius=cfg.train.location_target_radius, multiple=multiple,
+                        size_buckets=buckets)
+    val = ExampleSource(args.room_type, corpus.val, m.resolution, m.location_resolution,
+                        multiple=multiple)
+    sides = sorted(src._frame(s.room).resolution for s in src.scenes)
     total = 0.0
-    print(f'{args.room_type}, {cfg.name} configuration, 1 thread, {args.steps} steps each:')
+    print(f'{args.room_type}, {cfg.name} configuration, 1 thread, {args.steps} steps each, '
+          f'{len(sides)} rooms (image sides: median {sides[len(sides) // 2]} px, '
+          f'largest {sides[-1]} px), size buckets {buckets or "off"}:')
     with tempfile.TemporaryDirectory() as run:
-        for name in NETWORKS:
+        for name in args.modules.split(','):
             t0 = time.perf_counter()
             train_module(name, nets[name], src, val, cfg, 'cpu', Path(run), lambda e: None,
                          progress=False, until=args.steps)

@@ -24,6 +24,7 @@ from scene_synth_ros.networks.draws import (
     snap_angle,
 )
 from scene_synth_ros.networks.examples import (
+    SizeBuckets,
     ExampleSource,
     insertion_order,
     placeable,
@@ -334,6 +335,48 @@ def test_rotation_augmentation_is_exact(rooms):
         # ...and the yaw channels turn with it: sin' = cos, cos' = -sin.
         assert np.allclose(img[SIN], rb[COS], atol=1e-5)
         assert np.allclose(img[COS], -rb[SIN], atol=1e-5)
+
+
+def test_size_buckets_group_rooms_of_like_size_and_keep_each_rooms_chance():
+    rng = np.random.default_rng(0)
+    sides = rng.choice([64, 64, 64, 72, 80, 96, 128, 160], size=200)
+    states = rng.integers(1, 12, size=200).astype(float)
+    buckets = SizeBuckets(list(sides), states, least=30)
+    ranges = [(sides[g.index].min(), sides[g.index].max()) for g in buckets.groups]
+    assert len(ranges) > 2
+    assert sorted(k for g in buckets.groups for k in g.index) == list(range(200))
+    assert all(len(g.index) >= 30 for g in buckets.groups)
+    assert all(hi < lo for (_, hi), (lo, _) in zip(ranges, ranges[1:]))   # sizes not shared
+    for per_state in (False, True):
+        seen = np.zeros(200)
+        for _ in range(20_000):
+            pool = buckets.pool(rng, per_state)
+            seen[pool.draw(rng, per_state)] += 1
+        want = states / states.sum() if per_state else np.full(200, 1 / 200)
+        grouped = [(seen[g.index].sum() / seen.sum(), want[g.index].sum())
+                   for g in buckets.groups]
+        assert all(abs(a - b) < 0.02 for a, b in grouped), grouped
+        assert abs(seen[states > 8].sum() / seen.sum() - want[states > 8].sum()) < 0.02
+    one = SizeBuckets([64] * 5 + [96] * 5, np.ones(10), least=30)
+    assert len(one.groups) == 1
+
+
+def test_a_batch_of_size_buckets_holds_rooms_of_one_group(rooms):
+    wide = rooms[0]
+    big = Scene(replace(wide.room, floor=[(0, 0), (9.0, 0), (9.0, 4.0), (0, 4.0)],
+                        doors=(), windows=()), list(wide.first_tier[:2]))
+    scenes = rooms[:6] + [big] * 6
+    src = ExampleSource('bedroom', scenes, 64, 64, augment=False, size_buckets=6)
+    plain = ExampleSource('bedroom', scenes, 64, 64, augment=False)
+    assert len(src._buckets.groups) == 2
+    sides = {src.batch('location', [s], 8)['image'].shape[-1] for s in range(30)}
+    assert sides == {64, src._frame(big.room).resolution}
+    mixed = {plain.batch('location', [s], 8)['image'].shape[-1] for s in range(30)}
+    assert mixed == {src._frame(big.room).resolution}
+    # held-out batches are drawn from every room as before
+    a = src.batch('category', [3], 8, by_size=False)
+    b = plain.batch('category', [3], 8)
+    assert all(torch.equal(a[k], b[k]) for k in a)
 
 
 def test_example_batches_are_pure_functions_of_their_seed(rooms):

@@ -48,6 +48,7 @@ class RoomRequest:
     seed: int
     index: int
     calibration: str | None = None
+    real_sizes: bool = False
 
 
 def room_rng(room_type: str, seed: int, index: int) -> np.random.SeedSequence:
@@ -69,7 +70,8 @@ def corpus_room_type(name: str) -> str:
                           f'{", ".join(CORPUS_ROOM_TYPES)}')
 
 
-def _drawn(room_type: str, rng: np.random.Generator, calibration: dict[str, float]):
+def _drawn(room_type: str, rng: np.random.Generator, calibration: dict[str, float],
+           real_sizes: bool = False):
     """What an attempt at a room draws before it furnishes anything: the plan (categories),
     a model of each, and the empty shell, sized for those models' footprints."""
     plan = draw_plan(room_type, rng, calibration)
@@ -80,14 +82,17 @@ def _drawn(room_type: str, rng: np.random.Generator, calibration: dict[str, floa
     seated = sum((v.width + 2 * DINING_CLEARANCE) * (v.depth + 2 * DINING_CLEARANCE)
                  for c, v in zip(plan, chosen, strict=True) if c in SEATED_AROUND)
     return plan, chosen, sample_shell(room_type, rng,
-                                      min_area=CIRCULATION * footprint + seated + 2.0)
+                                      min_area=CIRCULATION * footprint + seated + 2.0,
+                                      real_sizes=real_sizes)
 
 
 def generate_room(room_type: str, seed: int = 0, index: int = 0,
-                  calibration: dict[str, float] | None = None) -> Scene:
+                  calibration: dict[str, float] | None = None,
+                  real_sizes: bool = False) -> Scene:
     """A furnished room that passes every check of ``geometry.check_scene`` and keeps every
     rule of ``KEPT_RULES`` (unless none of ``MAX_ATTEMPTS`` attempts does: then the first
-    valid one)."""
+    valid one). ``real_sizes``: its shell sized as real rooms of its type are
+    (``shell.sample_shell``)."""
     room_type = corpus_room_type(room_type)
     if calibration is None:
         calibration = load_calibration().get(room_type, {})
@@ -95,7 +100,7 @@ def generate_room(room_type: str, seed: int = 0, index: int = 0,
     valid = None
     for attempt, ss in enumerate(seeds):
         rng = np.random.default_rng(ss)
-        plan, chosen, room = _drawn(room_type, rng, calibration)
+        plan, chosen, room = _drawn(room_type, rng, calibration, real_sizes)
         lay = Layout(room, rng, {'generator': 'procedural', 'seed': seed, 'index': index})
         items = list(zip(plan, chosen, strict=True))
         first = [(c, v) for c, v in items if CATEGORIES[c].tier == 'first']
@@ -125,15 +130,17 @@ def generate_room(room_type: str, seed: int = 0, index: int = 0,
 
 def _work(req: RoomRequest) -> Scene:
     cal = load_calibration(req.calibration).get(req.room_type, {})
-    return generate_room(req.room_type, req.seed, req.index, cal)
+    return generate_room(req.room_type, req.seed, req.index, cal, req.real_sizes)
 
 
 def generate_corpus(room_type: str, n: int, seed: int = 0, workers: int | None = None,
-                    start: int = 0, calibration_path: str | None = None) -> Iterator[Scene]:
+                    start: int = 0, calibration_path: str | None = None,
+                    real_sizes: bool = False) -> Iterator[Scene]:
     """Rooms ``start`` .. ``start + n - 1`` of a corpus, in order, made on ``workers``
-    processes (default: all cores)."""
+    processes (default: all cores); ``real_sizes`` as for ``generate_room``."""
     room_type = corpus_room_type(room_type)
-    reqs = [RoomRequest(room_type, seed, i, calibration_path) for i in range(start, start + n)]
+    reqs = [RoomRequest(room_type, seed, i, calibration_path, real_sizes)
+            for i in range(start, start + n)]
     workers = workers or os.cpu_count() or 1
     if workers <= 1 or n < 8:
         yield from map(_work, reqs)

@@ -101,9 +101,10 @@ def rectangle_sides(area: float, aspect: float, cap: float, min_side: float
 
 
 def floor_outline(room_type: str, area: float, rng: np.random.Generator,
-                  cfg: ShellConfig) -> list[tuple[float, float]]:
-    """A rectangle, or with ``l_shape_probability`` an L: the rectangle less one corner."""
-    cap = ROOM_SIZE_CAP[room_type] - 0.05
+                  cfg: ShellConfig, cap: float | None = None) -> list[tuple[float, float]]:
+    """A rectangle, or with ``l_shape_probability`` an L: the rectangle less one corner;
+    no side longer than ``cap`` (default: the type's square)."""
+    cap = (ROOM_SIZE_CAP[room_type] if cap is None else cap) - 0.05
     aspect = rng.uniform(*cfg.aspect)
     l_shape = rng.random() < cfg.l_shape_probability
     cut = (rng.uniform(0.3, 0.45), rng.uniform(0.3, 0.45)) if l_shape else (0.0, 0.0)
@@ -159,14 +160,22 @@ def _place_openings(room: Room, kind: str, count: int, width: tuple[float, float
     return out
 
 
-def sample_shell(room_type: str, rng: np.random.Generator, min_area: float = 0.0) -> Room:
+def sample_shell(room_type: str, rng: np.random.Generator, min_area: float = 0.0,
+                 real_sizes: bool = False) -> Room:
     """An empty room of ``room_type`` with at least ``min_area`` square metres of floor
-    (as far as the room-size cap allows)."""
+    (as far as the room-size cap allows): within its type's square (``SHELLS``' areas, the
+    paper's rooms), or with ``real_sizes`` as large as real rooms of its type are
+    (``shell_area``, up to ``shell_cap``) where enough of them were counted."""
     cfg = SHELLS[room_type]
     spec = paper_spec(room_type)
-    cap = ROOM_SIZE_CAP[room_type]
-    area = min(max(rng.uniform(*cfg.area), min_area), 0.8 * cap * cap)
-    floor = floor_outline(room_type, area, rng, cfg)
+    if real_sizes:
+        cap = shell_cap(room_type)
+        drawn = shell_area(room_type, rng)
+    else:
+        cap = ROOM_SIZE_CAP[room_type]
+        drawn = rng.uniform(*cfg.area)
+    area = min(max(drawn, min_area), 0.8 * cap * cap)
+    floor = floor_outline(room_type, area, rng, cfg, cap)
     shell = Room(room_type, floor, round(rng.uniform(*cfg.wall_height), 2))
     taken: list[tuple[int, float, float]] = []
     doors = _place_openings(shell, 'door', count_from_mean(spec.doors_per_room, *cfg.doors, rng),

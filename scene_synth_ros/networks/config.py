@@ -100,6 +100,10 @@ class TrainConfig:
 
     seed: int = 0
     corpus_seed: int = 0
+    # Corpus rooms sized as real rooms of their type are (``corpus.shell.sample_shell``),
+    # up to 16 m, instead of within the type's square as the paper's (and the shipped
+    # bundles', until they are trained again: docs/training.md).
+    real_sizes: bool = False
     train_rooms: int = 3000
     val_rooms: int = 200
     val_examples: int = 512
@@ -110,6 +114,11 @@ class TrainConfig:
     # the training process makes each batch itself. Batches are pure functions of their
     # seed, so the weights do not depend on it; on a GPU, rendering is the bottleneck.
     loader_workers: int = 0
+    # Category and location batches of rooms of like size (``examples.SizeBuckets``): at
+    # least this many training rooms a bucket, 0 for batches of any rooms. A batch is padded
+    # to its largest room, so with rooms up to 16 m nearly every batch of any rooms is the
+    # size of the largest; a room's chance to be drawn is the same either way.
+    size_buckets: int = 0
     category: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(4000))
     location: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(1200, 32))
     orientation: ModuleSchedule = field(default_factory=lambda: ModuleSchedule(2400))

@@ -83,6 +83,52 @@ def placeable(removed: list[PlacedObject], kept: list[PlacedObject]) -> list[Pla
 
 
 # ---- examples -----------------------------------------------------------------------------
+class _Pool:
+    """Training rooms (indices into a source's list) to draw from, uniformly or in
+    proportion to their states."""
+
+    def __init__(self, index: np.ndarray, states: np.ndarray):
+        self.index = index
+        self._cdf = np.cumsum(states[index]) / states[index].sum()
+
+    def draw(self, rng: np.random.Generator, per_state: bool) -> int:
+        if per_state:
+            k = min(int(np.searchsorted(self._cdf, rng.random(), side='right')),
+                    len(self.index) - 1)
+        else:
+            k = int(rng.integers(len(self.index)))
+        return int(self.index[k])
+
+
+class SizeBuckets:
+    """Training rooms grouped by the side of their image, smallest first, each group of
+    whole image sizes and at least ``least`` rooms (the last takes what is left over).
+
+    A batch is padded to its largest image, so the cost of a step follows its largest room:
+    a batch drawn from one group costs about what its own rooms cost. Drawing the group of
+    a first room drawn from all rooms, then every room of the batch within that group,
+    leaves each room's chance to be in a batch as it was (``pool``)."""
+
+    def __init__(self, sides: list[int], states: np.ndarray, least: int):
+        sides = np.asarray(sides)
+        order = np.argsort(sides, kind='stable')
+        groups: list[list[int]] = [[]]
+        for n in np.unique(sides):
+            if len(groups[-1]) >= least:
+                groups.append([])
+            groups[-1] += [int(k) for k in order if sides[k] == n]
+        if len(groups) > 1 and len(groups[-1]) < least:
+            groups[-2] += groups.pop()
+        self.groups = [_Pool(np.array(g), states) for g in groups]
+        self._group_of = np.empty(len(sides), dtype=int)
+        for g, pool in enumerate(self.groups):
+            self._group_of[pool.index] = g
+        self._all = _Pool(np.arange(len(sides)), states)
+
+    def pool(self, rng: np.random.Generator, per_state: bool) -> _Pool:
+        return self.groups[self._group_of[self._all.draw(rng, per_state)]]
+
+
 class ExampleSource:
     """Makes batches of training examples for each module from a list of furnished rooms of
     one type. A batch is a pure function of its seed, so a resumed run sees the same data.
@@ -90,7 +136,7 @@ class ExampleSource:
 
     def __init__(self, room_type: str, scenes: list[Scene], resolution: int,
                  location_resolution: int, augment: bool = True, target_radius: int = 0,
-                 vocabulary: Vocabulary = PAPER, multiple: int = 1):
+                 vocabulary: Vocabulary = PAPER, multiple: int = 1, size_buckets: int = 0):
         self.vocabulary = vocabulary
         self.room_type = vocabulary.resolve(room_type)
         self.spec = vocabulary.spec(self.room_type)
@@ -110,8 +156,11 @@ class ExampleSource:
         self._renderers = {resolution: self.renderer}   # the rooms' frames', by their size
         # A room of N objects is N + 1 states of the sequential model (0 ... N objects
         # placed); drawing rooms in proportion to that draws states as synthesis meets them.
-        states = np.array([len(s.objects) + 1 for s in self.scenes], dtype=float)
-        self._state_cdf = np.cumsum(states) / states.sum()
+        self._states = np.array([len(s.objects) + 1 for s in self.scenes], dtype=float)
+        self._all = _Pool(np.arange(len(self.scenes)), self._states)
+        self._buckets = SizeBuckets(
+            [self._frame(s.room).resolution for s in self.scenes], self._states,
+            size_buckets) if size_buckets else None
 
     @property
     def extent(self) -> float:
@@ -123,15 +172,10 @@ class ExampleSource:
     def num_categories(self) -> int:
         return len(self.spec.names)
 
-    def _scene(self, rng, per_state: bool = False) -> Scene:
-        """A training room, uniformly, or with ``per_state`` in proportion to its number of
-        states (objects + 1)."""
-        if per_state:
-            k = min(int(np.searchsorted(self._state_cdf, rng.random(), side='right')),
-                    len(self.scenes) - 1)
-        else:
-            k = int(rng.integers(len(self.scenes)))
-        scene = self.scenes[k]
+    def _scene(self, rng, per_state: bool = False, pool: _Pool | None = None) -> Scene:
+        """A training room of ``pool`` (default: all), uniformly, or with ``per_state`` in
+        proportion to its number of states (objects + 1)."""
+        scene = self.scenes[(pool or self._all).draw(rng, per_state)]
         return rotate_scene(scene, int(rng.integers(4))) if self.augment else scene
 
     def counts(self, objects) -> np.ndarray:
@@ -141,12 +185,12 @@ class ExampleSource:
         return c
 
     # One example of each kind. Each returns a tuple of numpy arrays / numbers.
-    def category_example(self, rng):
+    def category_example(self, rng, pool: _Pool | None = None):
         # Uniform over (room, prefix) pairs, the states synthesis visits: drawing the room
         # uniformly and then the prefix would weigh a prefix of an N-object room 1 / (N + 1),
         # overweighting complete small rooms and so teaching STOP too early
         # (docs/design/investigations.md).
-        scene = self._scene(rng, per_state=True)
+        scene = self._scene(rng, per_state=True, pool=pool)
         order = insertion_order(scene, rng, by_importance=True,
                                 vocabulary=self.vocabulary)
         k = int(rng.integers(len(order) + 1))
@@ -156,8 +200,8 @@ class ExampleSource:
         target = self.index[order[k].category] if k < len(order) else self.num_categories
         return image, self.counts(order[:k]), target
 
-    def location_example(self, rng):
-        scene = self._scene(rng)
+    def location_example(self, rng, pool: _Pool | None = None):
+        scene = self._scene(rng, pool=pool)
         order = insertion_order(scene, rng, by_importance=False,
                                 vocabulary=self.vocabulary)
         k = int(rng.integers(len(order) + 1))
@@ -223,14 +267,21 @@ class ExampleSource:
         return image, self.index[obj.category], (math.log(obj.depth), math.log(obj.width))
 
     # Batches as tensors.
-    def batch(self, module: str, seed, size: int) -> dict[str, torch.Tensor]:
+    def batch(self, module: str, seed, size: int, by_size: bool = True
+              ) -> dict[str, torch.Tensor]:
+        """``size`` examples for ``module``, a pure function of ``seed``. With size buckets
+        and ``by_size``, a category or location batch holds rooms of one bucket: the first
+        room's, drawn as any room is, so every room keeps its chance to be drawn."""
         rng = np.random.default_rng(seed)
+        pool = None
+        if by_size and self._buckets is not None and module in ('category', 'location'):
+            pool = self._buckets.pool(rng, per_state=module == 'category')
         if module == 'category':
-            ex = [self.category_example(rng) for _ in range(size)]
+            ex = [self.category_example(rng, pool) for _ in range(size)]
             return {'image': padded_batch(e[0] for e in ex), 'counts': _stack(e[1] for e in ex),
                     'target': torch.tensor([e[2] for e in ex])}
         if module == 'location':
-            ex = [self.location_example(rng) for _ in range(size)]
+            ex = [self.location_example(rng, pool) for _ in range(size)]
             return {'image': padded_batch(e[0] for e in ex),
                     'target': padded_batch(e[1] for e in ex),
                     'offset': padded_batch(e[2] for e in ex)}

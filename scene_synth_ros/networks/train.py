@@ -68,7 +68,7 @@ def load_corpus(room_type: str, cfg: PipelineConfig, workers: int | None = None,
                            t.train_rooms, t.val_rooms)
         return RoomCorpus(data.train, data.held_out)
     rooms = list(generate_corpus(room_type, t.train_rooms + t.val_rooms, seed=t.corpus_seed,
-                                 workers=workers))
+                                 workers=workers, real_sizes=t.real_sizes))
     return RoomCorpus(rooms[:t.train_rooms], rooms[t.train_rooms:])
 
 
@@ -83,7 +83,7 @@ def load_corpora(room_type: str, cfg: PipelineConfig, sizes: set[int],
     dict kept by the caller, keeps the rooms made for the next call (in this process or,
     handed over, in another). ``echo`` says what is made or read."""
     t = cfg.train
-    key = (room_type, t.corpus_seed, t.val_rooms, str(data_dir))
+    key = (room_type, t.corpus_seed, t.real_sizes, t.val_rooms, str(data_dir))
     most = max(sizes)
     have = (cache or {}).get(key)
     if have is None or len(have.train) < most:
@@ -234,7 +234,10 @@ def evaluate(module: str, net: nn.Module, source: ExampleSource, cfg: PipelineCo
     with torch.no_grad():
         for k in range(0, examples, VAL_BATCH):
             size = min(VAL_BATCH, examples - k)
-            batch = source.batch(module, [seed, 10_000 + NETWORKS.index(module), k], size)
+            # held-out examples of rooms of any size, as they always were: metrics along one
+            # run compare with another's whatever its size buckets
+            batch = source.batch(module, [seed, 10_000 + NETWORKS.index(module), k], size,
+                                 by_size=False)
             torch.manual_seed(seed + k)
             _, m = batch_loss(module, net, batch, cfg, device)
             for key, v in m.items():
@@ -410,7 +413,7 @@ def train_room_type(room_type: str, cfg: PipelineConfig, run_root: Path, weights
     sources: dict[int, tuple[ExampleSource, ExampleSource]] = {
         n: tuple(ExampleSource(rt, rooms, m.resolution, m.location_resolution,
                                target_radius=t.location_target_radius, vocabulary=vocabulary,
-                               multiple=multiple)
+                               multiple=multiple, size_buckets=t.size_buckets)
                  for rooms in (c.train, c.val))
         for n, c in corpora.items()}
     if others_from is not None:
