@@ -44,6 +44,14 @@ def quoted(value: object, limit: int = MAX_QUOTE) -> str:
     return text if len(text) <= limit else text[:limit - 1] + '…'
 
 
+def quoted_list(values, shown: int = 8) -> str:
+    """The first ``shown`` of ``values``, each ``quoted``, and how many more there are:
+    bounded whatever the number of values."""
+    values = list(values)
+    out = ', '.join(quoted(v) for v in values[:shown])
+    return out + (f' and {len(values) - shown} more' if len(values) > shown else '')
+
+
 class SceneSynthError(Exception):
     """Bad input or an impossible request, described in one sentence (``sentence``)."""
 

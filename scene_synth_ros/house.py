@@ -152,6 +152,11 @@ class HouseScene:
     scenes: dict[str, Scene]
     meta: dict[str, Any] = field(default_factory=dict)
 
+    def copy(self) -> 'HouseScene':
+        """A copy whose rooms' object lists and meta may be changed on their own."""
+        return HouseScene(self.house, {rid: s.copy() for rid, s in self.scenes.items()},
+                          dict(self.meta))
+
     def objects(self) -> list[tuple[str, PlacedObject]]:
         """(room id, object) of every object, room by room in the layout's order."""
         return [(rid, o) for rid in self.house.rooms for o in self.scenes[rid].objects]

@@ -20,7 +20,7 @@ from . import lockstep
 from .errors import SceneSynthError, quoted
 from .house import House, HouseScene
 from .scene import Scene
-from .synth import Synthesis, Synthesizer
+from .synth import Synthesis, SynthConfig, Synthesizer, check_room_fits
 
 
 class HouseSynthesisError(SceneSynthError, ValueError):
@@ -56,20 +56,30 @@ class HouseSynthesis:
                 f'room and reaches every object')
 
 
-def furnish_house(synth: Synthesizer, house: House, seed: int = 0,
-                  cancel: Callable[[], bool] | None = None, width: int | None = None
-                  ) -> HouseSynthesis:
-    """Every room of ``house`` furnished from empty, room ``k`` (layout order) with
-    ``room_seed(seed, k)``, all in lockstep (at most ``width`` at a time; all by default).
-    A room that cannot be furnished (too large for its type, no weights for its type)
-    raises HouseSynthesisError naming it; ``cancel`` is handed to every room."""
+def furnish_house(synth: Synthesizer, house: House | HouseScene, seed: int = 0,
+                  cancel: Callable[[], bool] | None = None, width: int | None = None,
+                  config: SynthConfig | None = None) -> HouseSynthesis:
+    """Every room of ``house`` furnished, room ``k`` (layout order) with
+    ``room_seed(seed, k)``, all in lockstep (at most ``width`` at a time; all by default):
+    from empty, or for a HouseScene around the objects its rooms hold. A room that cannot
+    be furnished (too large for its type, no weights for its type) raises
+    HouseSynthesisError naming it; ``cancel`` and ``config`` (as for
+    ``Synthesizer.complete``) are handed to every room."""
     if width is not None and width < 1:
         raise ValueError(f'width must be at least 1, not {width}')
     t0 = time.perf_counter()
+    given = house if isinstance(house, HouseScene) else None
+    house = house.house if isinstance(house, HouseScene) else house
     ids = list(house.rooms)
 
     def furnish(k: int) -> Callable[[], Synthesis]:
-        return lambda: synth.generate(house.rooms[ids[k]], room_seed(seed, k), cancel)
+        room = house.rooms[ids[k]]
+        held = list(given.scenes[ids[k]].objects) if given is not None else []
+
+        def run() -> Synthesis:
+            check_room_fits(room, synth.vocabulary)
+            return synth.complete(Scene(room, held), room_seed(seed, k), cancel, config)
+        return run
 
     results = lockstep.run([furnish(k) for k in range(len(ids))], width)
     rooms: dict[str, Synthesis] = {}
@@ -80,6 +90,7 @@ def furnish_house(synth: Synthesizer, house: House, seed: int = 0,
         if isinstance(out, BaseException):
             raise out
         rooms[rid] = out
-    meta = {'generator': 'scene_synth_ros', 'seed': seed, **house.meta}
+    meta = {**(given.meta if given is not None else {}), **house.meta,
+            'generator': 'scene_synth_ros', 'seed': seed}
     scenes = {rid: Scene(house.rooms[rid], r.scene.objects, {}) for rid, r in rooms.items()}
     return HouseSynthesis(HouseScene(house, scenes, meta), rooms, time.perf_counter() - t0)

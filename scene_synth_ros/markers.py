@@ -15,7 +15,7 @@ colour since STL has no materials.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 import math
 
@@ -25,6 +25,7 @@ from . import colors
 from .catalog import Catalog
 from .categories import PAPER, Vocabulary
 from .export import WALL_THICKNESS, wall_boxes
+from .house import HouseScene
 from .meshes import file_uri, mesh_scale, package_uri, shipped_variant, user_marker
 from .scene import Opening, PlacedObject, Room, Scene
 
@@ -171,3 +172,12 @@ def scene_markers(scene: Scene, style: str = 'cube', catalog: Catalog | None = N
                        0.0, (0.0, 0.0, LABEL_HEIGHT), LABEL_RGBA, text=f'{o.id}')
             for i, o in enumerate(scene.objects)]
     return out
+
+
+def house_markers(house: HouseScene, style: str = 'cube', catalog: Catalog | None = None,
+                  vocabulary: Vocabulary = PAPER) -> list[MarkerSpec]:
+    """``scene_markers`` of every room of a furnished house, each room's in namespaces of
+    its own (``ROOM_ID/walls``, ``ROOM_ID/labels``, ...), so that RViz shows or hides a
+    room at once; a wall two rooms share is drawn in both."""
+    return [replace(m, ns=f'{rid}/{m.ns}') for rid, scene in house.scenes.items()
+            for m in scene_markers(scene, style, catalog, vocabulary)]

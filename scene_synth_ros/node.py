@@ -51,7 +51,8 @@ from visualization_msgs.msg import Marker, MarkerArray
 
 from .allocator import steady_allocator
 from .errors import SceneSynthError, sentence
-from .markers import scene_markers, warm_up
+from .house import HouseScene
+from .markers import house_markers, scene_markers, warm_up
 from .ros_client import LATCHED, RELIABLE
 from .ros_messages import (
     layout_dict,
@@ -363,9 +364,10 @@ class SceneSynthNode(LifecycleNode):
             if hasattr(response, 'seed'):
                 response.seed = -1 if answer.seed is None else answer.seed
             if hasattr(response, 'objects'):
-                response.objects = [object_msg(o.to_dict()) for o in answer.objects]
+                response.objects = [object_msg(o.to_dict(), request.room)
+                                    for o in answer.objects]
             elif hasattr(response, 'object') and answer.objects:
-                response.object = object_msg(answer.objects[0].to_dict())
+                response.object = object_msg(answer.objects[0].to_dict(), request.room)
             return response
         return call
 
@@ -442,8 +444,9 @@ class SceneSynthNode(LifecycleNode):
         clear = Marker(action=Marker.DELETEALL)
         clear.header.frame_id, clear.header.stamp = cfg.frame_id, stamp
         array.markers.append(clear)
-        for spec in scene_markers(served.scene, cfg.marker_style, served.catalog,
-                                  served.vocabulary):
+        scene = served.scene
+        markers = house_markers if isinstance(scene, HouseScene) else scene_markers
+        for spec in markers(scene, cfg.marker_style, served.catalog, served.vocabulary):
             m = Marker(ns=spec.ns, id=spec.id, type=_KINDS[spec.kind], action=Marker.ADD)
             m.header.frame_id, m.header.stamp = cfg.frame_id, stamp
             m.pose = pose(spec.position, spec.yaw)
@@ -458,7 +461,9 @@ class SceneSynthNode(LifecycleNode):
             array.markers.append(m)
         poses = PoseArray()
         poses.header.frame_id, poses.header.stamp = cfg.frame_id, stamp
-        poses.poses = [pose(o.position, o.yaw) for o in served.scene.objects]
+        objects = ([o for _, o in scene.objects()] if isinstance(scene, HouseScene)
+                   else scene.objects)
+        poses.poses = [pose(o.position, o.yaw) for o in objects]
         self.markers_pub.publish(array)
         self.poses_pub.publish(poses)
         self.scene_pub.publish(String(data=served.json))
@@ -466,9 +471,10 @@ class SceneSynthNode(LifecycleNode):
             self.map_pub.publish(occupancy_message(served.map, cfg.frame_id, stamp))
         added = f', {len(served.added)} added in {served.seconds:.2f} s' if served.added else ''
         seed = '' if served.seed is None else f' (seed {served.seed})'
-        self.get_logger().info(
-            f'{served.source}: {served.scene.room.room_type} with {len(served.scene)} objects'
-            f'{added}{seed}')
+        what = (f'a house of {len(scene.scenes)} rooms' if isinstance(scene, HouseScene)
+                else scene.room.room_type)
+        self.get_logger().info(f'{served.source}: {what} with {len(objects)} objects'
+                               f'{added}{seed}')
 
     def _publish_diagnostics(self, status: Status | None = None) -> None:
         if status is None and self.server is None:

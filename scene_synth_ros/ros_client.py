@@ -37,7 +37,7 @@ from visualization_msgs.msg import MarkerArray
 
 from .errors import SceneSynthError
 from .ros_messages import object_dict, quaternion_yaw
-from .schema import SceneValidationError, parse_room_layout, read_payload
+from .schema import SceneValidationError, parse_layout, read_payload
 
 DEFAULT_NODE = '/scene_synth_node'
 
@@ -194,8 +194,8 @@ class SceneSynthClient:
     # ---- requests -------------------------------------------------------------------------
     def publish_layout(self, layout: str | dict, wait: bool = True, timeout: float = 60.0,
                        check: bool = True) -> dict[str, Any] | None:
-        """Publish a room layout (JSON or YAML text, or a dict); with ``wait``, return the
-        scene the node answers with.
+        """Publish a room or house layout (JSON or YAML text, or a dict); with ``wait``,
+        return the scene the node answers with.
 
         With ``check`` the layout is validated here first, so bad input fails at once with
         the same sentence the node would log. With ``wait``, a valid layout without a
@@ -205,7 +205,7 @@ class SceneSynthClient:
         request_id = None
         if check or wait:
             try:
-                parse_room_layout(text)
+                parse_layout(text)
                 d = read_payload(text)
                 request_id = d.get('request_id')
                 if request_id is None and wait:
@@ -258,7 +258,7 @@ class SceneSynthClient:
 
     def furnish(self, layout: str | dict, seed: int | None = None,
                 feedback=None, timeout: float = 120.0) -> dict[str, Any]:
-        """Furnish a room layout (JSON or YAML text, or a dict) through the ~/furnish
+        """Furnish a room or house layout (JSON or YAML text, or a dict) through the ~/furnish
         action, with ``seed`` or the node's next one; ``feedback(msg)`` is called with each
         Furnish.Feedback (an object placed). The furnished room as a scene dict."""
         text = layout if isinstance(layout, str) else json.dumps(layout)
@@ -286,24 +286,26 @@ class SceneSynthClient:
         return response
 
     def next_object(self, category: str | None = None, seed: int | None = None,
-                    timeout: float = 120.0) -> dict[str, Any]:
+                    timeout: float = 120.0, room: str = '') -> dict[str, Any]:
         """Insert one object, of ``category`` or of the category module's choice, with
-        ``seed`` or the node's next one; the new object as a dict."""
+        ``seed`` or the node's next one, into the room served (of a house: room ``room``);
+        the new object as a dict."""
         response = self._typed_call('insert_object', InsertObject.Request(
-            category=category or '', seed=-1 if seed is None else seed), timeout)
+            category=category or '', seed=-1 if seed is None else seed, room=room), timeout)
         return object_dict(response.object)
 
     def suggest(self, k: int | None = None, seed: int | None = None,
-                timeout: float = 120.0) -> list[dict[str, Any]]:
-        """``k`` (or the node's ``suggestions``) proposals for the next object, as dicts;
-        the room does not change."""
+                timeout: float = 120.0, room: str = '') -> list[dict[str, Any]]:
+        """``k`` (or the node's ``suggestions``) proposals for the next object (of a house:
+        in room ``room``), as dicts; the room does not change."""
         response = self._typed_call('suggest_objects', SuggestObjects.Request(
-            k=k or 0, seed=-1 if seed is None else seed), timeout)
+            k=k or 0, seed=-1 if seed is None else seed, room=room), timeout)
         return [object_dict(o) for o in response.objects]
 
-    def reset(self, timeout: float = 120.0) -> dict[str, Any]:
-        """Remove every object from the current room."""
-        self._typed_call('clear_objects', ClearObjects.Request(), timeout)
+    def reset(self, timeout: float = 120.0, room: str = '') -> dict[str, Any]:
+        """Remove every object from the current room (of a house: from room ``room``, or
+        from every room)."""
+        self._typed_call('clear_objects', ClearObjects.Request(room=room), timeout)
         return {'objects': 0}
 
     # Generate has no typed service (the action furnishes a layout): it is shaped by the

@@ -15,6 +15,7 @@ from geometry_msgs.msg import Point, Point32, Pose, Vector3
 from nav_msgs.msg import OccupancyGrid as OccupancyGridMsg
 from scene_synth_msgs.msg import (
     Door,
+    HouseDoor,
     PlacedObject,
     Robot,
     RoomLayout,
@@ -109,9 +110,7 @@ def room_msg(d: dict[str, Any]) -> RoomLayout:
     """The message of a scene's ``room`` (a layout without objects)."""
     msg = RoomLayout(room_type=d['room_type'], wall_height=float(d.get('wall_height', 0.0)))
     msg.floor.points = [Point32(x=float(x), y=float(y), z=0.0) for x, y in d['floor']]
-    msg.doors = [Door(position=Point(x=float(o['position'][0]), y=float(o['position'][1])),
-                      width=float(o['width']), height=float(o['height']))
-                 for o in d.get('doors', ())]
+    msg.doors = [door_msg(o) for o in d.get('doors', ())]
     msg.windows = [Window(position=Point(x=float(o['position'][0]),
                                          y=float(o['position'][1])),
                           width=float(o['width']), height=float(o['height']),
@@ -119,13 +118,37 @@ def room_msg(d: dict[str, Any]) -> RoomLayout:
     return msg
 
 
+def door_msg(d: dict[str, Any]) -> Door:
+    return Door(position=Point(x=float(d['position'][0]), y=float(d['position'][1])),
+                width=float(d['width']), height=float(d['height']))
+
+
+def house_door_msg(d: dict[str, Any]) -> HouseDoor:
+    """The message of a house's door (``house_layout.schema.json``): ``room_b`` empty for
+    an entrance."""
+    rooms = list(d['rooms']) + ['']
+    return HouseDoor(room_a=rooms[0], room_b=rooms[1], door=door_msg(d))
+
+
 def scene_msg(scene_json: str, frame_id: str, stamp) -> Scene:
-    """The message of a scene as published on ``~/scene`` (``scene.schema.json``)."""
+    """The message of a scene as published on ``~/scene``: a room's
+    (``scene.schema.json``) or a house's (``house_scene.schema.json``: every room with its
+    id, the doors between them, each object naming its room)."""
     d = json.loads(scene_json)
     meta = dict(d.get('meta', {}))
     seed = meta.pop('seed', None)
-    msg = Scene(rooms=[room_msg(d['room'])],
-                objects=[object_msg(o) for o in d.get('objects', ())],
+    if 'rooms' in d:
+        rooms, objects = [], []
+        for r in d['rooms']:
+            msg = room_msg(r)
+            msg.id = r['id']
+            rooms.append(msg)
+            objects += [object_msg(o, r['id']) for o in r.get('objects', ())]
+        doors = [house_door_msg(dd) for dd in d.get('doors', ())]
+    else:
+        rooms, doors = [room_msg(d['room'])], []
+        objects = [object_msg(o) for o in d.get('objects', ())]
+    msg = Scene(rooms=rooms, doors=doors, objects=objects,
                 seed=-1 if seed is None else int(seed),
                 meta_json=json.dumps(meta, separators=(',', ':')))
     msg.header.frame_id, msg.header.stamp = frame_id, stamp

@@ -753,6 +753,27 @@ def parse_room_layout(text_or_dict: Any, catalog: catalog.Catalog | None = None,
         raise
 
 
+def is_house(d: Any) -> bool:
+    """Whether a layout's or scene's dict is a house's: its rooms, and neither a room nor a
+    room type of its own."""
+    return isinstance(d, dict) and 'rooms' in d and 'room' not in d and 'room_type' not in d
+
+
+def parse_layout(text_or_dict: Any, catalog: catalog.Catalog | None = None,
+                 vocabulary: Vocabulary = PAPER) -> Scene | HouseScene:
+    """A room layout as ``parse_room_layout`` reads it, or a house layout (``is_house``),
+    its rooms possibly holding objects, as a HouseScene."""
+    d = _load(text_or_dict, yaml_ok=True)
+    try:
+        if is_house(d):
+            return _house_scene_from_dict(d, catalog, vocabulary)
+        return _layout_to_scene(d, catalog, vocabulary)
+    except SceneValidationError as e:
+        if looks_like_python_dict(text_or_dict):
+            raise SceneValidationError(f'{e}; {PYTHON_DICT_HINT}', e.path) from None
+        raise
+
+
 def read_payload(text_or_dict: Any) -> Any:
     """JSON or YAML text (or a dict) as plain JSON values within ``limits``, before any
     schema check (SceneValidationError otherwise)."""
@@ -783,7 +804,7 @@ def load_layout(path: str | os.PathLike, catalog: catalog.Catalog | None = None,
     """Read a layout or scene file: a house (a top level with ``"rooms"``: a house layout,
     or a house scene with its objects) as a HouseScene, else as ``load_scene`` reads it."""
     d = _load(Path(path).read_text(encoding='utf-8'), yaml_ok=True)
-    if isinstance(d, dict) and 'rooms' in d and 'room' not in d and 'room_type' not in d:
+    if is_house(d):
         return _house_scene_from_dict(d, catalog, vocabulary)
     if isinstance(d, dict) and 'room' not in d:
         return _layout_to_scene(d, catalog, vocabulary)

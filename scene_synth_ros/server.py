@@ -34,12 +34,15 @@ from .errors import (
     SceneSynthError,
     UnknownRoomType,
     quoted,
+    quoted_list,
     sentence,
     with_article,
 )
 from .export import FORMATS as EXPORT_FORMATS
 from .export import UnknownFormat, parse_formats, write
 from .files import write_atomic
+from .house import HouseScene
+from .house_synth import furnish_house
 from .markers import MARKER_STYLES
 from .networks.config import device_name
 from .networks.runtime import set_threads
@@ -47,7 +50,7 @@ from .occupancy import OccupancyGrid, occupancy_grid
 from .rules import robot
 from .rules.robot import Robot, RobotReport
 from .scene import PlacedObject, Scene
-from .schema import dump_scene, parse_room_layout
+from .schema import dump_house_scene, dump_scene, parse_layout
 from .synth import MODULES, SynthConfig, SynthesisCancelled, Synthesizer, check_room_fits
 from .synth_config import MapConfig, check_value, setting, settings_of, shared
 from .user_catalog import load_catalog
@@ -252,9 +255,9 @@ def _check_folder(name: str, value: str, vocabulary: Vocabulary = PAPER) -> None
 
 @dataclass
 class Served:
-    """A room handed to the publisher: the scene and how it came about."""
+    """A room or a house handed to the publisher: the scene and how it came about."""
 
-    scene: Scene
+    scene: Scene | HouseScene
     source: str           # 'room_layout', 'room_polygon', 'generate', 'next_object', 'reset'
     seed: int | None
     added: list[PlacedObject] = field(default_factory=list)
@@ -263,6 +266,7 @@ class Served:
     timings: dict[str, float] = field(default_factory=dict)
     json: str = ''                       # the scene as published on ~/scene
     robot: RobotReport | None = None     # the robot promise, when synthesis measured it
+    rooms_robot: dict[str, RobotReport] = field(default_factory=dict)   # a house's, by room
     map: OccupancyGrid | None = None     # the room for a navigation stack, as ~/map has it
     catalog: Catalog = PROCEDURAL        # whose model ids the scene holds (catalog_dir)
     vocabulary: Vocabulary = PAPER       # whose room types and categories (the weights')
@@ -308,7 +312,8 @@ class _Job:
     epoch: int
     seq: int = 0                          # arrival order
     queued: float = 0.0                   # time.monotonic() of its arrival
-    scene: Scene | None = None
+    scene: Scene | HouseScene | None = None
+    room: str = ''                        # the room of the house a request acts on
     source: str = ''                      # where a layout came from: the topic's name
     done: threading.Event = field(default_factory=threading.Event)
     ok: bool = False
@@ -379,7 +384,7 @@ class SceneServer:
         self._lock = threading.Lock()
         self._epoch = 0                    # bumped by every accepted layout
         self._next_seed = config.seed
-        self._scene: Scene | None = None
+        self._scene: Scene | HouseScene | None = None
         self.status = Status()
         self._jobs: list[_Job] = []        # queued for the worker (a handful: no heap needed)
         self._wake = threading.Condition(self._lock)
@@ -465,12 +470,14 @@ class SceneServer:
         return Answer(job.ok, job.message, job.used_seed, job.objects, job.served)
 
     def _accept_layout(self, payload: Any, source: str, **what) -> _Job | str:
-        """The queued job of a room layout, or why it was rejected (also on the status)."""
+        """The queued job of a room or house layout, or why it was rejected (also on the
+        status)."""
         with self._lock:
             models, vocabulary = self._catalog, self._synth.vocabulary
         try:
-            scene = parse_room_layout(payload, models, vocabulary)
-            check_room_fits(scene.room, vocabulary)
+            scene = parse_layout(payload, models, vocabulary)
+            if isinstance(scene, Scene):       # a house's rooms were checked as parsed
+                check_room_fits(scene.room, vocabulary)
         except SceneSynthError as e:
             self._reject(f'{source}: {e}')
             return sentence(e)
@@ -511,13 +518,12 @@ class SceneServer:
              category: str | None = None, k: int | None = None, room: str = '') -> Answer:
         """``request`` with its arguments stated, each None for the node's parameter:
         ``seed`` (-1 too), ``category`` of ``next_object`` ('' lets the category module
-        choose), ``k`` proposals of ``suggest`` (0 too). ``room``, the room of a house, must
-        be '' while the node serves single rooms."""
+        choose), ``k`` proposals of ``suggest`` (0 too). ``room`` names the room of a house
+        the request acts on: required by ``next_object`` and ``suggest`` while the node
+        serves a house ('' makes ``generate`` and ``reset`` act on every room), and '' while
+        it serves a single room."""
         if kind not in REQUESTS:
             raise ValueError(f'unknown request {kind!r}')
-        if room:
-            return Answer(False, f'room {quoted(room)}: the node serves single rooms, which '
-                                 f'have no room ids; leave room empty')
         seed, wrong = _seed_arg(seed)
         if wrong:
             return Answer(False, wrong)
@@ -543,7 +549,7 @@ class SceneServer:
             busy = ahead >= self.config.max_pending
             if not busy:
                 # under the lock: close() either drains it or was first
-                job = self._queue(kind, seed=seed, category=category, k=k)
+                job = self._queue(kind, seed=seed, category=category, k=k, room=room)
                 self._calls.append(job)
         if busy:
             self._set_status(increment='requests_busy')
@@ -573,7 +579,7 @@ class SceneServer:
             return self._next_seed
 
     @property
-    def scene(self) -> Scene | None:
+    def scene(self) -> Scene | HouseScene | None:
         with self._lock:
             return None if self._scene is None else self._scene.copy()
 
@@ -670,6 +676,13 @@ class SceneServer:
             return
         else:
             base = current
+        if isinstance(base, HouseScene):
+            self._execute_house(job, base, cfg, synth, models)
+            return
+        if job.room:
+            job.message = (f'room {quoted(job.room)}: the node serves a single room, which '
+                           f'has no room ids; leave room empty')
+            return
         base = in_catalog(base, models, synth.vocabulary)
         if job.kind == 'reset':
             scene = Scene(base.room, [], _answered(base.meta))
@@ -684,13 +697,8 @@ class SceneServer:
                                      vocabulary=synth.vocabulary))
             job.ok = True
             return
-        # This job's settings, passed with each call: the synthesizer is shared.
-        settings = replace(synth.config, location_temperature=cfg.location_temperature,
-                           max_objects=cfg.max_objects, robot=job.robot or robot_of(cfg),
-                           catalog=models)
-        # A seed the request states leaves the node's own sequence where it is.
-        seed = job.used_seed = self._take_seed() if job.seed is None else job.seed
-        self._set_status(busy=True)
+        settings = self._settings(job, cfg, synth, models)
+        seed = self._job_seed(job)
         try:
             if job.kind == 'next_object':
                 category = cfg.next_category if job.category is None else job.category
@@ -708,10 +716,7 @@ class SceneServer:
                 result = synth.complete(base, seed, cancel=lambda: self._stop_layout(job),
                                         config=settings, on_object=self._progress(job, base))
         except SynthesisCancelled:
-            if job.cancelled is not None and job.cancelled():
-                job.message = 'cancelled'
-            else:
-                self._supersede(job)
+            self._cancelled(job)
             return
         except SceneSynthError as e:
             self._reject(f'{job.source or job.kind}: {e}')
@@ -727,8 +732,117 @@ class SceneServer:
                                  'stopped': result.stopped,
                                  'seconds': round(result.seconds, 4)})
 
+    @staticmethod
+    def _settings(job: _Job, cfg: ServerConfig, synth: Synthesizer,
+                  models: Catalog) -> SynthConfig:
+        """This job's settings, passed with each call: the synthesizer is shared."""
+        return replace(synth.config, location_temperature=cfg.location_temperature,
+                       max_objects=cfg.max_objects, robot=job.robot or robot_of(cfg),
+                       catalog=models)
+
+    def _job_seed(self, job: _Job) -> int:
+        """The seed ``job`` draws with; a seed the request states leaves the node's own
+        sequence where it is. The worker is busy from here on."""
+        seed = job.used_seed = self._take_seed() if job.seed is None else job.seed
+        self._set_status(busy=True)
+        return seed
+
+    def _cancelled(self, job: _Job) -> None:
+        if job.cancelled is not None and job.cancelled():
+            job.message = 'cancelled'
+        else:
+            self._supersede(job)
+
+    def _execute_house(self, job: _Job, base: HouseScene, cfg: ServerConfig,
+                       synth: Synthesizer, models: Catalog) -> None:
+        """``job`` on a house: a house layout, or a request on the house served now, on
+        one room of it (``job.room``) or, for ``generate`` and ``reset``, on every room."""
+        base = HouseScene(base.house, {rid: in_catalog(s, models, synth.vocabulary)
+                                       for rid, s in base.scenes.items()}, dict(base.meta))
+        rid, rooms = job.room, list(base.house.rooms)
+        if rid and rid not in base.scenes:
+            job.message = (f'room {quoted(rid)} is not a room of the house served now; its '
+                           f'rooms are {quoted_list(rooms)}')
+            return
+        if not rid and job.kind in ('next_object', 'suggest'):
+            job.message = (f'{job.kind} acts on one room of the house served now: name it in '
+                           f'room (one of {quoted_list(rooms)})')
+            return
+        served_as = dict(source=job.source or job.kind, catalog=models,
+                         vocabulary=synth.vocabulary)
+        if job.kind == 'reset':
+            scenes = {r: Scene(s.room, [], {}) if r == rid or not rid else s
+                      for r, s in base.scenes.items()}
+            self._commit(job, Served(HouseScene(base.house, scenes, _answered(base.meta)),
+                                     seed=base.meta.get('seed'), **served_as))
+            job.ok, job.message = True, _json({'objects': sum(map(len, scenes.values()))})
+            return
+        if job.kind == 'layout' and not cfg.auto_generate and not job.furnish:
+            given = HouseScene(base.house, base.scenes,
+                               {'generator': 'scene_synth_ros', 'seed': None, **base.meta})
+            self._commit(job, Served(given, seed=None, **served_as))
+            job.ok = True
+            return
+        settings = self._settings(job, cfg, synth, models)
+        seed = self._job_seed(job)
+
+        def with_room(scene: Scene) -> HouseScene:
+            scenes = dict(base.scenes)
+            scenes[rid] = Scene(scene.room, scene.objects, {})
+            return HouseScene(base.house, scenes,
+                              {**_answered(base.meta), 'generator': 'scene_synth_ros',
+                               'seed': seed})
+        try:
+            if job.kind == 'next_object':
+                category = cfg.next_category if job.category is None else job.category
+                self._next_object(job, synth, base.scenes[rid], seed, category, settings,
+                                  with_room)
+                return
+            if job.kind == 'suggest':
+                found = synth.suggest(base.scenes[rid], job.k or cfg.suggestions, seed,
+                                      config=settings)
+                job.ok, job.objects = True, found
+                job.message = _json({'seed': seed, 'room': rid,
+                                     'objects': [o.to_dict() for o in found]})
+                return
+            if rid:                     # generate, one room of the house from empty
+                result = synth.complete(Scene(base.scenes[rid].room, []), seed,
+                                        cancel=lambda: self._between(job), config=settings)
+                served = Served(with_room(result.scene), seed=seed, added=result.added,
+                                seconds=result.seconds, stopped=result.stopped,
+                                timings=result.timings,
+                                rooms_robot={rid: result.robot} if result.robot else {},
+                                **served_as)
+                added = {rid: result.added}
+            else:                       # a house layout, or generate: every room
+                start = base if job.kind == 'layout' else base.house
+                stop = ((lambda: self._between(job)) if job.kind == 'generate'
+                        else (lambda: self._stop_layout(job)))
+                out = furnish_house(synth, start, seed, cancel=stop, config=settings)
+                added = {r: s.added for r, s in out.rooms.items()}
+                served = Served(out.scene, seed=seed, added=[o for a in added.values()
+                                                             for o in a],
+                                seconds=out.seconds, stopped='stop',
+                                rooms_robot={r: s.robot for r, s in out.rooms.items()
+                                             if s.robot is not None}, **served_as)
+        except SynthesisCancelled:
+            self._cancelled(job)
+            return
+        except SceneSynthError as e:
+            self._reject(f'{job.source or job.kind}: {e}')
+            job.message = str(e)
+            return
+        if self._commit(job, served):
+            job.ok, job.objects = True, served.added
+            job.message = _json({'seed': seed, 'objects': len(served.scene.objects()),
+                                 'added': {r: [o.id for o in a] for r, a in added.items()},
+                                 'seconds': round(served.seconds, 4)})
+
     def _next_object(self, job: _Job, synth: Synthesizer, base: Scene, seed: int,
-                     category: str, settings: SynthConfig) -> None:
+                     category: str, settings: SynthConfig,
+                     into: Callable[[Scene], Scene | HouseScene] | None = None) -> None:
+        """One more object for the room ``base``, committed as ``into`` makes the room
+        with it (default: the room itself)."""
         t0 = time.perf_counter()
         try:
             obj = synth.next_object(base, seed, category or None, config=settings)
@@ -744,7 +858,7 @@ class SceneServer:
         scene = base.copy()
         scene.objects.append(obj)
         scene.meta = {**_answered(scene.meta), 'generator': 'scene_synth_ros', 'seed': seed}
-        if self._commit(job, Served(scene, 'next_object', seed, [obj],
+        if self._commit(job, Served(into(scene) if into else scene, 'next_object', seed, [obj],
                                    time.perf_counter() - t0, catalog=settings.catalog,
                                    vocabulary=synth.vocabulary)):
             job.ok, job.message, job.objects = True, _json(obj.to_dict()), [obj]
@@ -778,13 +892,19 @@ class SceneServer:
         return seed
 
     def _commit(self, job: _Job, served: Served) -> bool:
-        """Make ``served`` the current room and publish it, unless a newer layout came."""
+        """Make ``served`` the current room or house and publish it, unless a newer layout
+        came."""
         # Synthesis measured the promise for the robot it furnished for; other rooms (reset,
         # one more object, a layout published as given) are measured here.
-        promise = served.robot or robot.report(served.scene, robot_of(self.config))
-        served.scene.meta['robot'] = promise.to_dict()
+        if isinstance(served.scene, HouseScene):
+            promise, where = self._house_promise(served)
+        else:
+            promise = served.robot or robot.report(served.scene, robot_of(self.config))
+            served.scene.meta['robot'] = promise.to_dict()
+            where = with_article(served.scene.room.room_type)
         # Never publish what the schema would refuse; the model ids are the catalog's.
-        served.json = dump_scene(served.scene, served.catalog, served.vocabulary)
+        dump = dump_house_scene if isinstance(served.scene, HouseScene) else dump_scene
+        served.json = dump(served.scene, served.catalog, served.vocabulary)
         with self._lock:
             stale = self._stale(job)
             if not stale:
@@ -794,26 +914,52 @@ class SceneServer:
             return False
         # the map of the robot the room was furnished for (a goal's own, else the node's)
         served.map = occupancy_grid(served.scene, promise.robot, map_of(self.config))
-        message = (f'{served.source}: {len(served.scene)} objects in '
-                   f'{with_article(served.scene.room.room_type)}')
+        objects = count_objects(served.scene)
+        message = f'{served.source}: {objects} objects in {where}'
         if not promise.kept:       # a user's objects broke it; synthesis never does
             message += f', but {promise.sentence()}'
             self._log('warn', message)
         self._set_status(level=OK if promise.kept else WARN, message=message,
-                         increment='rooms_served', objects=len(served.scene),
-                         room_type=served.scene.room.room_type, seed=served.seed,
+                         increment='rooms_served', objects=objects,
+                         room_type=kind_of(served.scene), seed=served.seed,
                          last_seconds=served.seconds, timings=dict(served.timings))
         self._publish(served)
         if self.config.export_dir:
             self._export(served, Path(self.config.export_dir).expanduser())
         return True
 
+    def _house_promise(self, served: Served) -> tuple[RobotReport, str]:
+        """The robot promise of every room of the house ``served`` (synthesis's where it
+        measured it), put in the house's meta; the first room that breaks it, else the first
+        room's, and the words for the house."""
+        house = served.scene
+        measured = served.rooms_robot
+        who = next(iter(measured.values())).robot if measured else robot_of(self.config)
+        reports = {rid: measured.get(rid) or robot.report(s, who)
+                   for rid, s in house.scenes.items()}
+        house.meta['robot'] = {'promise_kept': all(r.kept for r in reports.values()),
+                               'rooms': {rid: r.to_dict() for rid, r in reports.items()}}
+        broken = [(rid, r) for rid, r in reports.items() if not r.kept]
+        promise = broken[0][1] if broken else next(iter(reports.values()))
+        where = f'a house of {len(reports)} rooms'
+        if broken:
+            where += f' (room {quoted(broken[0][0])})'
+        return promise, where
+
     def _export(self, served: Served, directory: Path) -> None:
         """Write the room as JSON and in every one of ``export_formats`` (mesh files shared
-        in ``meshes/``); a failure is reported, not fatal."""
+        in ``meshes/``); a failure is reported, not fatal. A house is written as JSON: its
+        worlds are yet to come."""
         stem = f'room_{self.status.rooms_served:05d}'
         try:
             directory.mkdir(parents=True, exist_ok=True)
+            if isinstance(served.scene, HouseScene):
+                write_atomic(directory / f'house_{self.status.rooms_served:05d}.json',
+                             served.json + '\n')
+                if parse_formats(self.config.export_formats):
+                    self._log('warn', f'export of a house to {self.config.export_formats} is '
+                                      f'not made yet; its JSON is in {directory}')
+                return
             write_atomic(directory / f'{stem}.json', served.json + '\n')
             for fmt in parse_formats(self.config.export_formats):
                 write(served.scene, fmt, directory / f'{stem}{EXPORT_FORMATS[fmt].suffix}',
@@ -852,6 +998,16 @@ class SceneServer:
             self.status = replace(self.status, **changes)
             status = self.status
         self._on_status(status)
+
+
+def count_objects(scene: Scene | HouseScene) -> int:
+    """The objects of a room, or of every room of a house."""
+    return len(scene.objects()) if isinstance(scene, HouseScene) else len(scene)
+
+
+def kind_of(scene: Scene | HouseScene) -> str:
+    """What /diagnostics calls the room served: its room type, or 'house'."""
+    return 'house' if isinstance(scene, HouseScene) else scene.room.room_type
 
 
 def map_of(config: ServerConfig) -> MapConfig:

@@ -359,6 +359,10 @@ def test_size_buckets_group_rooms_of_like_size_and_keep_each_rooms_chance():
         assert abs(seen[states > 8].sum() / seen.sum() - want[states > 8].sum()) < 0.02
     one = SizeBuckets([64] * 5 + [96] * 5, np.ones(10), least=30)
     assert len(one.groups) == 1
+    # a last group too small joins the one before it; no room is left out
+    tail = SizeBuckets([64] * 50 + [72] * 50 + [80] * 10, np.ones(110), least=40)
+    assert [len(g.index) for g in tail.groups] == [50, 60]
+    assert sorted(k for g in tail.groups for k in g.index) == list(range(110))
 
 
 def test_a_batch_of_size_buckets_holds_rooms_of_one_group(rooms):

@@ -604,6 +604,44 @@ def test_typed_requests_carry_their_arguments(node):
         client.suggest(k=99)
 
 
+def test_a_house_on_room_layout_is_furnished_whole_with_its_map_and_rooms_named(node):
+    import numpy as np
+    from test_house import HOUSE
+
+    from scene_synth_ros.occupancy import occupancy_grid
+    from scene_synth_ros.schema import parse_house_scene
+    client = node.client
+    try:
+        before = client.counts()
+        client.publish_layout(HOUSE, wait=False)
+        d, markers, poses = client.wait_room(before, timeout=120.0)
+        house = parse_house_scene(d)
+        assert list(house.scenes) == ['hall', 'bed', 'kitchen'] and all(
+            s.objects for s in house.scenes.values())
+        assert d['meta']['robot']['promise_kept']
+        assert {m.ns.split('/')[0] for m in markers.markers[1:]} == set(house.scenes)
+        assert len(poses.poses) == len(house.objects())
+        grid, want = client.latest('map'), occupancy_grid(house)
+        data = np.frombuffer(bytes(grid.data), dtype=np.int8).reshape(want.data.shape)
+        assert (data == want.data).all()
+        proposals = client.suggest(k=2, seed=1, room='kitchen')
+        assert proposals and all(p['category'] for p in proposals)
+        with pytest.raises(ClientError, match="name it in room .one of 'hall', 'bed'"):
+            client.suggest(k=2)
+        published = client.count('scene')
+        client.reset(room='bed')
+        client.spin_until(lambda: client.count('scene') > published, 10.0, 'scene')
+        now = parse_house_scene(client.latest('scene').data)
+        assert not now.scenes['bed'].objects and now.scenes['kitchen'].objects
+        chair = client.next_object(room='bed', seed=3)
+        assert chair['category']
+        # the Furnish action takes a house too, and answers it as a house
+        again = client.furnish(json.dumps(HOUSE), seed=4)
+        assert [r['id'] for r in again['rooms']] == ['hall', 'bed', 'kitchen']
+    finally:
+        client.publish_layout(LAYOUT, timeout=60.0)
+
+
 def test_a_closed_client_leaves_nothing_a_forked_process_would_finalise(node):
     # A client's rclpy objects left to the garbage collector are finalised in whatever
     # process collects them: a worker forked later (a batch, a pool) hung there, joining

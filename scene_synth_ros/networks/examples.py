@@ -118,7 +118,8 @@ class SizeBuckets:
                 groups.append([])
             groups[-1] += [int(k) for k in order if sides[k] == n]
         if len(groups) > 1 and len(groups[-1]) < least:
-            groups[-2] += groups.pop()
+            last = groups.pop()
+            groups[-1] += last
         self.groups = [_Pool(np.array(g), states) for g in groups]
         self._group_of = np.empty(len(sides), dtype=int)
         for g, pool in enumerate(self.groups):

@@ -1,0 +1,102 @@
+"""A house served by the node's core (server.SceneServer): a house layout on the same input
+as a room's, every room furnished at once, requests that name the room they act on."""
+from __future__ import annotations
+
+import copy
+import json
+
+import pytest
+from test_house import HOUSE
+from test_server import LAYOUT, Recorder
+
+from scene_synth_ros.geometry import check_scene
+from scene_synth_ros.house import HouseScene
+from scene_synth_ros.markers import house_markers
+from scene_synth_ros.schema import parse_house_scene
+from scene_synth_ros.server import OK, SceneServer, ServerConfig
+
+
+@pytest.fixture(scope='module')
+def served():
+    rec = Recorder()
+    srv = SceneServer(ServerConfig(torch_threads=1), rec.publish, rec.status, rec.log,
+                      rec.seed)
+    srv.rec = rec
+    assert srv.submit_layout(json.dumps(HOUSE))
+    first = rec.wait(1)
+    yield srv, first
+    srv.close()
+
+
+def test_a_house_layout_is_furnished_whole_and_published_as_one_house_scene(served):
+    srv, first = served
+    house = parse_house_scene(first.json)
+    assert list(house.scenes) == ['hall', 'bed', 'kitchen'] and first.seed == 0
+    for rid, scene in house.scenes.items():
+        assert scene.objects, rid
+        assert check_scene(scene).ok, (rid, check_scene(scene).summary())
+    robot = house.meta['robot']
+    assert robot['promise_kept'] and set(robot['rooms']) == set(house.scenes)
+    assert {o.id for o in first.added} and len(first.added) == len(house.objects())
+    # the map is the whole house's: it spans every room
+    xs = [p[0] for s in house.scenes.values() for p in s.room.floor]
+    assert first.map.width * first.map.resolution >= max(xs) - min(xs)
+    status = srv.status
+    assert status.level == OK and status.room_type == 'house'
+    assert status.objects == len(house.objects())
+    assert 'a house of 3 rooms' in status.message
+    markers = house_markers(house)
+    assert {m.ns.split('/')[0] for m in markers} == {'hall', 'bed', 'kitchen'}
+    assert len({(m.ns, m.id) for m in markers}) == len(markers)
+
+
+def test_requests_on_a_house_name_their_room_and_change_only_that_room(served):
+    srv, first = served
+    before = parse_house_scene(first.json)
+    answer = srv.call('next_object', room='hall')
+    n = len(srv.rec.served)
+    if answer.ok:       # something more fits in the hall: it went there, nowhere else
+        now = parse_house_scene(srv.rec.wait(n).json)
+        assert len(now.scenes['hall']) == len(before.scenes['hall']) + 1
+        assert now.scenes['bed'].to_dict() == before.scenes['bed'].to_dict()
+    else:
+        assert 'fits' in answer.message
+    assert srv.call('reset', room='kitchen').ok
+    now = srv.scene
+    assert isinstance(now, HouseScene) and not now.scenes['kitchen'].objects
+    assert now.scenes['bed'].objects
+    found = srv.call('suggest', room='kitchen', k=3)
+    assert found.ok and found.objects
+    again = srv.call('generate', room='kitchen', seed=5)
+    assert again.ok and srv.scene.scenes['kitchen'].objects
+    assert srv.scene.scenes['bed'].to_dict() == now.scenes['bed'].to_dict()
+    for kind in ('next_object', 'suggest'):
+        a = srv.call(kind)
+        assert not a.ok and "name it in room (one of 'hall', 'bed', 'kitchen')" in a.message
+    a = srv.call('reset', room='attic')
+    assert not a.ok and "room 'attic' is not a room of the house" in a.message
+    assert srv.call('reset').ok and not srv.scene.objects()
+    assert srv.call('generate').ok and len(srv.scene.objects()) > 0
+
+
+def test_a_house_gives_way_to_a_room_and_a_room_refuses_room_ids():
+    rec = Recorder()
+    srv = SceneServer(ServerConfig(torch_threads=1, auto_generate=False), rec.publish,
+                      rec.status)
+    try:
+        house = copy.deepcopy(HOUSE)
+        assert srv.submit_layout(house)
+        given = rec.wait(1)
+        assert isinstance(given.scene, HouseScene) and not given.scene.objects()
+        assert srv.furnish(json.dumps(house), seed=2).ok
+        assert srv.scene.objects()
+        assert srv.submit_layout(LAYOUT)
+        rec.wait(3)
+        a = srv.call('reset', room='bed')
+        assert not a.ok and 'serves a single room' in a.message
+        bad = copy.deepcopy(HOUSE)
+        bad['doors'][0]['rooms'] = ['hall', 'nowhere']
+        assert not srv.submit_layout(bad)
+        assert 'nowhere' in srv.status.last_error and len(srv.status.last_error) < 400
+    finally:
+        srv.close()
