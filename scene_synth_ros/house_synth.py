@@ -20,7 +20,7 @@ from . import lockstep
 from .errors import SceneSynthError, quoted
 from .house import House, HouseScene
 from .scene import Scene
-from .synth import Synthesis, SynthConfig, Synthesizer, check_room_fits
+from .synth import SynthConfig, Synthesis, Synthesizer, check_room_fits
 
 
 class HouseSynthesisError(SceneSynthError, ValueError):

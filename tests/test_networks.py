@@ -24,8 +24,8 @@ from scene_synth_ros.networks.draws import (
     snap_angle,
 )
 from scene_synth_ros.networks.examples import (
-    SizeBuckets,
     ExampleSource,
+    SizeBuckets,
     insertion_order,
     placeable,
     rotate_scene,
@@ -346,7 +346,7 @@ def test_size_buckets_group_rooms_of_like_size_and_keep_each_rooms_chance():
     assert len(ranges) > 2
     assert sorted(k for g in buckets.groups for k in g.index) == list(range(200))
     assert all(len(g.index) >= 30 for g in buckets.groups)
-    assert all(hi < lo for (_, hi), (lo, _) in zip(ranges, ranges[1:]))   # sizes not shared
+    assert all(hi < lo for (_, hi), (lo, _) in zip(ranges[:-1], ranges[1:], strict=True))
     for per_state in (False, True):
         seen = np.zeros(200)
         for _ in range(20_000):
