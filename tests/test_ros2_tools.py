@@ -176,6 +176,24 @@ def test_the_node_guide_commands_with_the_real_tools(launched):
     assert outputs[-1].strip() == 'Integer value is: 43'
 
 
+def test_the_node_guide_house_commands_with_the_real_tools(launched):
+    """docs/node.md's house: its layout published with `ros2 topic pub`, its map echoed."""
+    from scene_synth_ros.occupancy import occupancy_grid
+    from scene_synth_ros.schema import parse_house_scene
+    pub, echo_map = _documented('docs/node.md', '## Houses')
+    assert pub.startswith('ros2 topic pub') and echo_map.startswith('ros2 topic echo')
+    _sh(pub, launched.env)
+    deadline = time.monotonic() + 60
+    while '"rooms"' not in (text := _sh(ECHO_SCENE, launched.env).rsplit('---', 1)[0]):
+        assert time.monotonic() < deadline, text[-400:]
+        time.sleep(0.5)
+    house = parse_house_scene(text)
+    assert list(house.scenes) == ['hall', 'bed'] and house.objects()
+    info = _sh(echo_map, launched.env)
+    want = occupancy_grid(house)
+    assert f'width: {want.width}' in info and f'height: {want.height}' in info, info
+
+
 def test_a_layout_latched_before_the_node_starts_is_furnished(tmp_path):
     """A simulator publishes its layout transient local at start-up, before the node is
     up: the node furnishes it once started."""
