@@ -170,3 +170,8 @@ class HouseScene:
         if self.meta:
             d['meta'] = dict(self.meta)
         return d
+
+
+def count_objects(scene: Scene | HouseScene) -> int:
+    """The objects of a room, or of every room of a house."""
+    return len(scene.objects()) if isinstance(scene, HouseScene) else len(scene)

@@ -41,7 +41,7 @@ from .errors import (
 from .export import FORMATS as EXPORT_FORMATS
 from .export import UnknownFormat, parse_formats, write
 from .files import write_atomic
-from .house import HouseScene
+from .house import HouseScene, count_objects
 from .house_synth import furnish_house
 from .markers import MARKER_STYLES
 from .networks.config import device_name
@@ -948,18 +948,12 @@ class SceneServer:
 
     def _export(self, served: Served, directory: Path) -> None:
         """Write the room as JSON and in every one of ``export_formats`` (mesh files shared
-        in ``meshes/``); a failure is reported, not fatal. A house is written as JSON: its
-        worlds are yet to come."""
-        stem = f'room_{self.status.rooms_served:05d}'
+        in ``meshes/``); a failure is reported, not fatal. A house is one world in each
+        format, ``house_NNNNN``."""
+        kind = 'house' if isinstance(served.scene, HouseScene) else 'room'
+        stem = f'{kind}_{self.status.rooms_served:05d}'
         try:
             directory.mkdir(parents=True, exist_ok=True)
-            if isinstance(served.scene, HouseScene):
-                write_atomic(directory / f'house_{self.status.rooms_served:05d}.json',
-                             served.json + '\n')
-                if parse_formats(self.config.export_formats):
-                    self._log('warn', f'export of a house to {self.config.export_formats} is '
-                                      f'not made yet; its JSON is in {directory}')
-                return
             write_atomic(directory / f'{stem}.json', served.json + '\n')
             for fmt in parse_formats(self.config.export_formats):
                 write(served.scene, fmt, directory / f'{stem}{EXPORT_FORMATS[fmt].suffix}',
@@ -998,11 +992,6 @@ class SceneServer:
             self.status = replace(self.status, **changes)
             status = self.status
         self._on_status(status)
-
-
-def count_objects(scene: Scene | HouseScene) -> int:
-    """The objects of a room, or of every room of a house."""
-    return len(scene.objects()) if isinstance(scene, HouseScene) else len(scene)
 
 
 def kind_of(scene: Scene | HouseScene) -> str:

@@ -121,7 +121,7 @@ def test_export_command_writes_every_format_into_one_self_contained_folder(cli, 
         '--mesh-dir', out / 'meshes', '--fixed')
     assert {p.name for p in out.iterdir()} == {
         'room.xml', 'room.urdf', 'room_objects', 'room.poses.json', 'room.usda', 'model.sdf',
-        'meshes'}
+        'model_labels.json', 'meshes'}
     # Every mesh reference is relative and resolves inside the folder.
     text = (out / 'room.xml').read_text() + (out / 'room.urdf').read_text()
     assert str(tmp_path) not in text and 'meshes/' in text

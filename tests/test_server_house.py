@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import copy
 import json
+import time
 
 import pytest
 from test_house import HOUSE
@@ -98,5 +99,25 @@ def test_a_house_gives_way_to_a_room_and_a_room_refuses_room_ids():
         bad['doors'][0]['rooms'] = ['hall', 'nowhere']
         assert not srv.submit_layout(bad)
         assert 'nowhere' in srv.status.last_error and len(srv.status.last_error) < 400
+    finally:
+        srv.close()
+
+
+def test_a_house_served_is_exported_as_one_world_in_each_format(tmp_path):
+    rec = Recorder()
+    srv = SceneServer(ServerConfig(torch_threads=1, export_dir=str(tmp_path),
+                                   export_formats='sdf,mjcf'), rec.publish, rec.status)
+    try:
+        assert srv.submit_layout(json.dumps(HOUSE))
+        served = rec.wait(1)
+        deadline = time.monotonic() + 30       # written just after it is published
+        while not (tmp_path / 'house_00001.xml').exists():
+            assert time.monotonic() < deadline
+            time.sleep(0.1)
+        assert sorted(p.name for p in tmp_path.glob('house_00001*')) == [
+            'house_00001.json', 'house_00001.sdf', 'house_00001.xml',
+            'house_00001_labels.json']
+        assert parse_house_scene((tmp_path / 'house_00001.json').read_text()).to_dict() == \
+            parse_house_scene(served.json).to_dict()
     finally:
         srv.close()

@@ -21,7 +21,8 @@ from .common import (
 def add_parser(sub) -> None:
     c = sub.add_parser('export', help='write a scene for simulators: Gazebo SDF, glTF, MuJoCo '
                        'MJCF, URDF for PyBullet, OpenUSD')
-    c.add_argument('scene', help='a scene JSON')
+    c.add_argument('scene', help='a scene JSON, or a house scene (scene-synth generate '
+                   '--layout HOUSE): one world of the whole house')
     c.add_argument('--sdf', help='the Gazebo world file to write (SDF 1.9)')
     c.add_argument('--sdf-model', help='the room as one SDF model, to spawn into a running '
                    'world (ros_gz_sim create)')
@@ -83,8 +84,9 @@ def add_parser(sub) -> None:
 
 def cmd_export(args) -> int:
     from ..export import export_sdf, write
+    from ..house import count_objects
     models = load_catalog(args.catalog, args.vocabulary)
-    scene = load_scene_file(args.scene, models, args.vocabulary)
+    scene = load_layout_file(args.scene, models, args.vocabulary)
     wanted = [(fmt, getattr(args, fmt)) for fmt in ('sdf', 'gltf', 'mjcf', 'urdf', 'usd')
               if getattr(args, fmt)]
     if not (wanted or args.sdf_model):
@@ -99,7 +101,7 @@ def cmd_export(args) -> int:
                 write(scene, fmt, path, args.mesh_dir, fixed=args.fixed, catalog=models)
         except OSError as e:
             raise UserError(f'cannot write {path}: {e.strerror or e}') from None
-        print(f'wrote {path} ({fmt}, {len(scene.objects)} objects)')
+        print(f'wrote {path} ({fmt}, {count_objects(scene)} objects)')
     return 0
 
 

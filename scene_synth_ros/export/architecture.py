@@ -18,9 +18,14 @@ import shapely
 if TYPE_CHECKING:
     import trimesh
 
-from ..scene import Room
+from ..house import House, HouseScene
+from ..scene import Room, Scene
+from ..thresholds import MAX_WALL_THICKNESS, OPENING_TOLERANCE
 
 WALL_THICKNESS = 0.10     # metres, outside the floor outline
+# The thinnest wall between two rooms (metres): two floors that meet on one line still get a
+# wall between them, half of it on each side of the line.
+PARTITION = 0.01
 FLOOR_THICKNESS = 0.05    # metres, below z = 0
 
 
@@ -35,37 +40,110 @@ class WallBox:
     size: tuple[float, float, float]
 
 
-def wall_boxes(room: Room, thickness: float = WALL_THICKNESS) -> list[WallBox]:
-    """The solid pieces of every wall, with the door and window openings left out."""
+def _wall_pieces(room: Room, wall, spans, prefix: str) -> list[WallBox]:
+    """The solid pieces of ``wall`` of ``room`` over ``spans``, each (start offset, end
+    offset, thickness, depth of its centre behind the wall's line, height), with the room's
+    door and window openings on that wall left out; named ``PREFIX_K``."""
+    cuts = []   # (start offset, end offset, bottom, top) of each opening on this wall
+    for op in room.openings:
+        if room.wall_of(op) == wall:
+            mid = wall.offset_of(op.position)
+            top = op.sill + op.height
+            cuts.append((max(mid - op.width / 2, 0.0), min(mid + op.width / 2, wall.length),
+                         op.sill, top))
+    yaw = math.atan2(wall.direction[1], wall.direction[0])
     out = []
-    for wall in room.walls:
-        cuts = []   # (start offset, end offset, bottom, top) of each opening on this wall
-        for op in room.openings:
-            if room.wall_of(op) == wall:
-                mid = wall.offset_of(op.position)
-                top = min(op.sill + op.height, room.wall_height)
-                cuts.append((max(mid - op.width / 2, 0.0), min(mid + op.width / 2, wall.length),
-                             op.sill, top))
-        # Split the wall along its length at every opening edge; each span is solid from
-        # the floor to the ceiling except where an opening covers it.
-        edges = sorted({0.0, wall.length} | {c[0] for c in cuts} | {c[1] for c in cuts})
-        k = 0
+    for start, end, thickness, depth, height in spans:
+        # Split the span at every opening edge; each piece is solid from the floor to the
+        # ceiling except where an opening covers it.
+        edges = sorted({start, end} | {c[i] for c in cuts for i in (0, 1)
+                                       if start < c[i] < end})
         for a, b in itertools.pairwise(edges):
             if b - a < 1e-6:
                 continue
             mid = (a + b) / 2
-            holes = sorted((c[2], c[3]) for c in cuts if c[0] <= mid <= c[1])
+            holes = sorted((min(c[2], height), min(c[3], height)) for c in cuts
+                           if c[0] <= mid <= c[1])
             z = 0.0
-            for lo, hi in holes + [(room.wall_height, room.wall_height)]:
+            for lo, hi in holes + [(height, height)]:
                 if lo - z > 1e-6:
-                    centre = (wall.point_at(mid) - wall.normal * thickness / 2)
-                    out.append(WallBox(f'wall_{wall.index}_{k}',
+                    centre = wall.point_at(mid) - wall.normal * depth
+                    out.append(WallBox(f'{prefix}_{len(out)}',
                                        (float(centre[0]), float(centre[1]), (z + lo) / 2),
-                                       math.atan2(wall.direction[1], wall.direction[0]),
-                                       (b - a, thickness, lo - z)))
-                    k += 1
+                                       yaw, (b - a, thickness, lo - z)))
                 z = max(z, hi)
     return out
+
+
+def wall_boxes(room: Room, thickness: float = WALL_THICKNESS) -> list[WallBox]:
+    """The solid pieces of every wall, with the door and window openings left out."""
+    return [box for wall in room.walls
+            for box in _wall_pieces(room, wall, [(0.0, wall.length, thickness, thickness / 2,
+                                                  room.wall_height)], f'wall_{wall.index}')]
+
+
+def _shared(wall, others: list[tuple[int, Room]]) -> list[tuple[float, float, int, float]]:
+    """Where another room stands behind ``wall``, back to back with it at most
+    ``MAX_WALL_THICKNESS`` away: (start offset, end offset, that room's index, the gap)."""
+    out = []
+    for j, other in others:
+        for w in other.walls:
+            if float(np.dot(w.direction, wall.direction)) > -0.9998:     # within 1 degree
+                continue
+            gap = float(np.dot(np.subtract(w.start, wall.start), -wall.normal))
+            if not -OPENING_TOLERANCE <= gap <= MAX_WALL_THICKNESS + OPENING_TOLERANCE:
+                continue
+            a, b = sorted((wall.offset_of(w.start), wall.offset_of(w.end)))
+            a, b = max(a, 0.0), min(b, wall.length)
+            if b - a > OPENING_TOLERANCE:
+                out.append((a, b, j, max(gap, 0.0)))
+    return sorted(out)
+
+
+def house_wall_boxes(house: House, thickness: float = WALL_THICKNESS) -> list[WallBox]:
+    """The walls of a whole house, each once: an outside wall as a room's
+    (``wall_boxes``), ``thickness`` outside its floor; a wall two rooms share, written by
+    the first of the two in the layout's order, fills the gap between their floors (at
+    least ``PARTITION`` thick, about the middle of the gap) up to the higher of their two
+    walls, with the door between them left open (it is in both rooms' doors). Named
+    ``wall_R_W_K``: room R (layout order), its wall W, piece K."""
+    rooms = list(house.rooms.values())
+    out: list[WallBox] = []
+    for i, room in enumerate(rooms):
+        others = [(j, r) for j, r in enumerate(rooms) if j != i]
+        for wall in room.walls:
+            spans, at = [], 0.0
+            outside = (thickness, thickness / 2, room.wall_height)
+            for a, b, j, gap in _shared(wall, others):
+                if a > at:
+                    spans.append((at, a, *outside))
+                if j > i and b > at:
+                    spans.append((max(a, at), b, max(gap, PARTITION), gap / 2,
+                                  max(room.wall_height, rooms[j].wall_height)))
+                at = max(at, b)
+            if wall.length > at:
+                spans.append((at, wall.length, *outside))
+            out += _wall_pieces(room, wall, spans, f'wall_{i}_{wall.index}')
+    return out
+
+
+@dataclass(frozen=True)
+class Architecture:
+    """What every export builds of a room or a whole house: each room's floor (named) and
+    the wall pieces."""
+
+    floors: tuple[tuple[str, Room], ...]
+    walls: tuple[WallBox, ...]
+
+
+def architecture_of(scene: Scene | HouseScene) -> Architecture:
+    """The floor (``floor``) and walls of a room; of a house, every room's floor
+    (``floor_R``, R its index in the layout) and the house's walls (``house_wall_boxes``)."""
+    if isinstance(scene, HouseScene):
+        rooms = list(scene.house.rooms.values())
+        return Architecture(tuple((f'floor_{i}', r) for i, r in enumerate(rooms)),
+                            tuple(house_wall_boxes(scene.house)))
+    return Architecture((('floor', scene.room),), tuple(wall_boxes(scene.room)))
 
 
 def _box_mesh(box: WallBox) -> trimesh.Trimesh:
@@ -101,10 +179,12 @@ def floor_slab(room: Room, thickness: float = FLOOR_THICKNESS) -> trimesh.Trimes
     return trimesh.Trimesh(vertices, faces, process=True)
 
 
-def room_meshes(room: Room) -> dict[str, trimesh.Trimesh]:
-    """The floor (a slab under z = 0 in the floor's outline) and the wall pieces."""
-    out = {'floor': floor_slab(room)}
-    for box in wall_boxes(room):
+def room_meshes(room: Room | Architecture) -> dict[str, trimesh.Trimesh]:
+    """The floor (a slab under z = 0 in the floor's outline) and the wall pieces of a room,
+    or every floor and wall of an ``Architecture``, by name."""
+    built = room if isinstance(room, Architecture) else architecture_of(Scene(room, []))
+    out = {name: floor_slab(r) for name, r in built.floors}
+    for box in built.walls:
         out[box.name] = _box_mesh(box)
     return out
 

@@ -1,4 +1,4 @@
-"""A furnished room as a MuJoCo model (MJCF).
+"""A furnished room or house as a MuJoCo model (MJCF).
 
 The world body holds the floor and the walls, static: the floor collides as the outline's
 enclosing box (``architecture.floor_box``, whose box-box contacts hold several points where
@@ -34,11 +34,19 @@ import numpy as np
 
 from ..catalog import Catalog
 from ..files import safe_name
+from ..house import HouseScene
 from ..meshes import MATERIALS
 from ..scene import Scene
-from .architecture import FLOOR_RGBA, WALL_RGBA, floor_box, floor_slab, wall_boxes
+from .architecture import (
+    FLOOR_RGBA,
+    WALL_RGBA,
+    Architecture,
+    architecture_of,
+    floor_box,
+    floor_slab,
+)
 from .meshfiles import MeshFolder
-from .physics import DEFAULT_PHYSICS, GRAVITY, Body, PhysicsConfig, quat_wxyz, scene_bodies
+from .physics import DEFAULT_PHYSICS, GRAVITY, Body, PhysicsConfig, quat_wxyz, world_bodies
 
 VISUAL_GROUP, COLLISION_GROUP = 2, 3
 
@@ -77,14 +85,15 @@ def _header(root, options: MjcfOptions, friction: float) -> None:
          solref=_numbers(options.solref), solimp=_numbers(options.solimp))
 
 
-def _assets(root, scene: Scene, bodies: list[Body], meshes: MeshFolder) -> dict:
+def _assets(root, built: Architecture, bodies: list[Body], meshes: MeshFolder) -> dict:
     """Materials and meshes; returns, per model id, its (mesh name, material name) pairs."""
     asset = _sub(root, 'asset')
     _sub(asset, 'material', name='floor', rgba=_numbers(FLOOR_RGBA))
     _sub(asset, 'material', name='wall', rgba=_numbers(WALL_RGBA))
-    slab = floor_slab(scene.room)
-    _sub(asset, 'mesh', name='floor', vertex=_numbers(np.asarray(slab.vertices).ravel()),
-         face=' '.join(str(int(i)) for i in np.asarray(slab.faces).ravel()))
+    for name, room in built.floors:
+        slab = floor_slab(room)
+        _sub(asset, 'mesh', name=name, vertex=_numbers(np.asarray(slab.vertices).ravel()),
+             face=' '.join(str(int(i)) for i in np.asarray(slab.faces).ravel()))
     used_materials: set[str] = set()
     visuals: dict[str, list[tuple[str, str]]] = {}
     for body in bodies:
@@ -106,16 +115,17 @@ def _assets(root, scene: Scene, bodies: list[Body], meshes: MeshFolder) -> dict:
     return visuals
 
 
-def _architecture(world, scene: Scene) -> None:
+def _architecture(world, built: Architecture) -> None:
     _sub(world, 'light', name='sun', directional='true', pos='0 0 10', dir='0.5 -0.1 -0.9',
          diffuse='0.8 0.8 0.8')
-    floor = floor_box(scene.room)
-    _sub(world, 'geom', name='floor', **{'class': 'collision'}, pos=_numbers(floor.centre),
-         quat=_numbers(quat_wxyz(floor.yaw)), size=_numbers(np.asarray(floor.size) / 2),
-         rgba='0 0 0 0')
-    _sub(world, 'geom', name='floor_visual', **{'class': 'visual'}, mesh='floor',
-         material='floor')
-    for box in wall_boxes(scene.room):
+    for name, room in built.floors:
+        floor = floor_box(room)
+        _sub(world, 'geom', name=name, **{'class': 'collision'}, pos=_numbers(floor.centre),
+             quat=_numbers(quat_wxyz(floor.yaw)), size=_numbers(np.asarray(floor.size) / 2),
+             rgba='0 0 0 0')
+        _sub(world, 'geom', name=f'{name}_visual', **{'class': 'visual'}, mesh=name,
+             material='floor')
+    for box in built.walls:
         _sub(world, 'geom', name=box.name, **{'class': 'collision'}, group=0,
              pos=_numbers(box.centre), quat=_numbers(quat_wxyz(box.yaw)),
              size=_numbers(np.asarray(box.size) / 2), material='wall')
@@ -137,21 +147,23 @@ def _body(world, body: Body, visuals, fixed: bool) -> None:
              rgba='0.5 0.5 0.9 0.4')
 
 
-def export_mjcf(scene: Scene, path: str | Path, mesh_dir: str | Path | None = None,
+def export_mjcf(scene: Scene | HouseScene, path: str | Path, mesh_dir: str | Path | None = None,
                 fixed: bool = False, physics: PhysicsConfig = DEFAULT_PHYSICS,
                 options: MjcfOptions = MjcfOptions(), catalog: Catalog | None = None) -> Path:
-    """Write ``scene`` as an MJCF model to ``path``; per-material OBJ meshes go to
-    ``mesh_dir`` (default ``<stem>_meshes/`` beside the file), named relative to it.
-    ``fixed`` welds the furniture to the world instead of giving it free joints."""
+    """Write ``scene``, a room or a whole house, as an MJCF model to ``path``;
+    per-material OBJ meshes go to ``mesh_dir`` (default ``<stem>_meshes/`` beside the file),
+    named relative to it. ``fixed`` welds the furniture to the world instead of giving it
+    free joints."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     meshes = MeshFolder(mesh_dir or path.parent / f'{path.stem}_meshes', path.parent)
-    bodies = scene_bodies(scene, physics, catalog)
+    bodies = world_bodies(scene, physics, catalog)
+    built = architecture_of(scene)
     root = ET.Element('mujoco', model='scene_synth_room')
     _header(root, options, physics.friction)
-    visuals = _assets(root, scene, bodies, meshes)
+    visuals = _assets(root, built, bodies, meshes)
     world = _sub(root, 'worldbody')
-    _architecture(world, scene)
+    _architecture(world, built)
     for body in bodies:
         _body(world, body, visuals, fixed or body.fixed)
     ET.indent(root)

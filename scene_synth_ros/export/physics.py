@@ -70,6 +70,7 @@ from shapely.geometry import LineString, Point, Polygon
 
 from ..catalog import Catalog, ModelVariant
 from ..geometry import collisions, raised
+from ..house import HouseScene
 from ..meshes import build_parts, variant_for
 from ..scene import PlacedObject, Room, Scene, box_corners, rotation
 from ..thresholds import COLLISION_TOLERANCE
@@ -465,6 +466,18 @@ def scene_bodies(scene: Scene, config: PhysicsConfig = DEFAULT_PHYSICS,
             com, inertia = mass_properties(pieces, host.mass)
             bodies[parent.id] = replace(host, pieces=pieces, com=com, inertia=inertia)
     return [bodies[o.id] for o in scene.objects]
+
+
+def world_bodies(scene: Scene | HouseScene, config: PhysicsConfig = DEFAULT_PHYSICS,
+                 catalog: Catalog | None = None) -> list[Body]:
+    """``scene_bodies`` of a room, or of every room of a house, room by room, each body's
+    id (and its support's) then ``ROOM_ID/OBJECT_ID``: one world's names, whatever ids the
+    rooms share."""
+    if not isinstance(scene, HouseScene):
+        return scene_bodies(scene, config, catalog)
+    return [replace(b, id=f'{rid}/{b.id}', support=b.support and f'{rid}/{b.support}')
+            for rid, room in scene.scenes.items()
+            for b in scene_bodies(room, config, catalog)]
 
 
 def quat_wxyz(yaw: float) -> tuple[float, float, float, float]:

@@ -1,6 +1,8 @@
-"""A furnished room as URDF files for PyBullet (the engine the paper checked collisions with).
+"""A furnished room or house as URDF files for PyBullet (the engine the paper checked
+collisions with).
 
-A URDF describes one articulated body, so a room is several files:
+A URDF describes one articulated body, so a room (or a house: every room's floor, each wall
+once) is several files:
 
 - ``<stem>.urdf``: the architecture as one link, loaded with ``useFixedBase``: the floor
   (visual: the outline's slab as an OBJ; collision: ``architecture.floor_box``) and the wall
@@ -27,10 +29,18 @@ import numpy as np
 
 from ..catalog import Catalog
 from ..files import safe_name
+from ..house import HouseScene
 from ..scene import Scene
-from .architecture import FLOOR_RGBA, WALL_RGBA, floor_box, floor_slab, wall_boxes
+from .architecture import (
+    FLOOR_RGBA,
+    WALL_RGBA,
+    Architecture,
+    architecture_of,
+    floor_box,
+    floor_slab,
+)
 from .meshfiles import MeshFolder, obj_of
-from .physics import DEFAULT_PHYSICS, Body, PhysicsConfig, scene_bodies
+from .physics import DEFAULT_PHYSICS, Body, PhysicsConfig, world_bodies
 
 
 def poses_path(path: str | Path) -> Path:
@@ -84,21 +94,22 @@ def _write(root, path: Path) -> None:
     path.write_text('<?xml version="1.0"?>\n' + ET.tostring(root, encoding='unicode') + '\n')
 
 
-def _room_urdf(scene: Scene, path: Path, meshes: MeshFolder, friction: float) -> None:
+def _room_urdf(built: Architecture, path: Path, meshes: MeshFolder, friction: float) -> None:
     robot = ET.Element('robot', name='room')
     link = _sub(robot, 'link', name='room')
     _contact(link, friction)
     inertial = _sub(link, 'inertial')          # static: PyBullet takes mass 0 as immovable
     _sub(inertial, 'mass', value='0')
     _sub(inertial, 'inertia', ixx='0', ixy='0', ixz='0', iyy='0', iyz='0', izz='0')
-    floor_file = meshes.text(f'{safe_name(path.stem)}_floor.obj',
-                             obj_of(floor_slab(scene.room), 'floor slab'))
-    visual = _sub(link, 'visual', name='floor')
-    _sub(_sub(visual, 'geometry'), 'mesh', filename=meshes.relative(floor_file))
-    _sub(_sub(visual, 'material', name='floor'), 'color', rgba=_numbers(FLOOR_RGBA))
-    floor = floor_box(scene.room)
-    _box(link, 'collision', floor.centre, floor.yaw, floor.size, 'floor')
-    for box in wall_boxes(scene.room):
+    for name, room in built.floors:
+        floor_file = meshes.text(f'{safe_name(path.stem)}_{name}.obj',
+                                 obj_of(floor_slab(room), 'floor slab'))
+        visual = _sub(link, 'visual', name=name)
+        _sub(_sub(visual, 'geometry'), 'mesh', filename=meshes.relative(floor_file))
+        _sub(_sub(visual, 'material', name='floor'), 'color', rgba=_numbers(FLOOR_RGBA))
+        floor = floor_box(room)
+        _box(link, 'collision', floor.centre, floor.yaw, floor.size, name)
+    for box in built.walls:
         _box(link, 'visual', box.centre, box.yaw, box.size, box.name, WALL_RGBA)
         _box(link, 'collision', box.centre, box.yaw, box.size, box.name)
     _write(robot, path)
@@ -121,21 +132,22 @@ def _object_urdf(body: Body, path: Path, meshes: MeshFolder, friction: float) ->
     _write(robot, path)
 
 
-def export_urdf(scene: Scene, path: str | Path, mesh_dir: str | Path | None = None,
+def export_urdf(scene: Scene | HouseScene, path: str | Path, mesh_dir: str | Path | None = None,
                 fixed: bool = False, physics: PhysicsConfig = DEFAULT_PHYSICS,
                 catalog: Catalog | None = None) -> Path:
-    """Write ``scene`` as URDF: the room at ``path``, one URDF per object in
-    ``<stem>_objects/``, and ``<stem>.poses.json``; OBJ meshes go to ``mesh_dir`` (default
-    ``<stem>_meshes/`` beside ``path``). Returns ``path``."""
+    """Write ``scene``, a room or a whole house, as URDF: its architecture at ``path``, one
+    URDF per object in ``<stem>_objects/``, and ``<stem>.poses.json``; OBJ meshes go to
+    ``mesh_dir`` (default ``<stem>_meshes/`` beside ``path``). Returns ``path``."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     folder = Path(mesh_dir) if mesh_dir else path.parent / f'{path.stem}_meshes'
-    _room_urdf(scene, path, MeshFolder(folder, path.parent), physics.friction)
+    _room_urdf(architecture_of(scene), path, MeshFolder(folder, path.parent),
+               physics.friction)
     objects = objects_dir(path)
     objects.mkdir(exist_ok=True)
     meshes = MeshFolder(folder, objects)
     entries = []
-    for body in scene_bodies(scene, physics, catalog):
+    for body in world_bodies(scene, physics, catalog):
         file = objects / f'{safe_name(body.id)}.urdf'
         _object_urdf(body, file, meshes, physics.friction)
         entries.append({'id': body.id, 'category': body.category,

@@ -1,4 +1,4 @@
-"""A furnished room as an OpenUSD stage, for Isaac Sim and Omniverse.
+"""A furnished room or house as an OpenUSD stage, for Isaac Sim and Omniverse.
 
 The stage is Z up in metres (``upAxis = Z``, ``metersPerUnit = 1``, ``kilogramsPerUnit =
 1``) with ``/World`` as its default prim:
@@ -17,7 +17,9 @@ The stage is Z up in metres (``upAxis = Z``, ``metersPerUnit = 1``, ``kilogramsP
   bound with the ``physics`` purpose to every collider.
 
 Each object prim also carries its scene id and category as ``scene_synth:id`` and
-``scene_synth:category`` attributes.
+``scene_synth:category`` attributes, and its category as its semantic class (``label``),
+which Isaac Sim's segmentation reads; the floor's is ``floor``, the walls' ``wall``. A house is
+one stage: every room's floor (``Floor_R``), each wall once, every room's objects.
 """
 from __future__ import annotations
 
@@ -26,10 +28,11 @@ import math
 from pathlib import Path
 
 from ..catalog import Catalog
+from ..house import HouseScene
 from ..scene import Scene
-from .architecture import FLOOR_RGBA, WALL_RGBA, floor_slab, wall_boxes
+from .architecture import FLOOR_RGBA, WALL_RGBA, Architecture, architecture_of, floor_slab
 from .meshfiles import MeshFolder
-from .physics import DEFAULT_PHYSICS, GRAVITY, Body, PhysicsConfig, scene_bodies
+from .physics import DEFAULT_PHYSICS, GRAVITY, Body, PhysicsConfig, world_bodies
 from .usd_prims import identifier, mesh, surface
 
 
@@ -52,22 +55,37 @@ def _collider(stage, path: str, centre, yaw: float, size, physics_material):
     return cube
 
 
-def _room(stage, scene: Scene, physics_material) -> None:
+def label(prim, category: str) -> None:
+    """``category`` as the prim's semantic class: ``UsdSemantics.LabelsAPI`` (instance
+    ``class``, Isaac Sim 5 and later) and the ``SemanticsAPI`` attributes Isaac Sim read
+    before it (instance ``Semantics``), which descendants inherit in segmentation."""
+    from pxr import Sdf, UsdSemantics  # usd-core: USD exports only
+    UsdSemantics.LabelsAPI.Apply(prim, 'class').CreateLabelsAttr([category])
+    prim.AddAppliedSchema('SemanticsAPI:Semantics')
+    for key, value in (('semanticType', 'class'), ('semanticData', category)):
+        prim.CreateAttribute(f'semantic:Semantics:params:{key}',
+                             Sdf.ValueTypeNames.String).Set(value)
+
+
+def _room(stage, built: Architecture, physics_material) -> None:
     from pxr import UsdGeom, UsdPhysics, UsdShade  # usd-core: USD exports only
     UsdGeom.Xform.Define(stage, '/World/Room')
     floor_look = surface(stage, '/World/Looks/floor', FLOOR_RGBA, 0.0, 0.9)
     wall_look = surface(stage, '/World/Looks/wall', WALL_RGBA, 0.0, 0.9)
-    slab = floor_slab(scene.room)
-    floor = mesh(stage, '/World/Room/Floor', slab.vertices, slab.faces)
-    UsdShade.MaterialBindingAPI.Apply(floor.GetPrim()).Bind(floor_look)
-    UsdPhysics.CollisionAPI.Apply(floor.GetPrim())
-    UsdPhysics.MeshCollisionAPI.Apply(floor.GetPrim()).CreateApproximationAttr('none')
-    UsdShade.MaterialBindingAPI(floor.GetPrim()).Bind(
-        physics_material, UsdShade.Tokens.weakerThanDescendants, 'physics')
-    for box in wall_boxes(scene.room):
+    for name, room in built.floors:
+        slab = floor_slab(room)
+        floor = mesh(stage, f'/World/Room/{name.capitalize()}', slab.vertices, slab.faces)
+        UsdShade.MaterialBindingAPI.Apply(floor.GetPrim()).Bind(floor_look)
+        UsdPhysics.CollisionAPI.Apply(floor.GetPrim())
+        UsdPhysics.MeshCollisionAPI.Apply(floor.GetPrim()).CreateApproximationAttr('none')
+        UsdShade.MaterialBindingAPI(floor.GetPrim()).Bind(
+            physics_material, UsdShade.Tokens.weakerThanDescendants, 'physics')
+        label(floor.GetPrim(), 'floor')
+    for box in built.walls:
         cube = _collider(stage, f'/World/Room/{box.name}', box.centre, box.yaw, box.size,
                          physics_material)
         UsdShade.MaterialBindingAPI(cube.GetPrim()).Bind(wall_look)
+        label(cube.GetPrim(), 'wall')
 
 
 def _object(stage, path: str, body: Body, model_file: str, fixed: bool,
@@ -78,6 +96,7 @@ def _object(stage, path: str, body: Body, model_file: str, fixed: bool,
     prim = xform.GetPrim()
     prim.CreateAttribute('scene_synth:id', Sdf.ValueTypeNames.String).Set(body.id)
     prim.CreateAttribute('scene_synth:category', Sdf.ValueTypeNames.String).Set(body.category)
+    label(prim, body.category)
     visual = UsdGeom.Xform.Define(stage, f'{path}/Visual')
     visual.GetPrim().GetReferences().AddReference(model_file)
     UsdGeom.Scope.Define(stage, f'{path}/Collision')
@@ -97,12 +116,13 @@ def _object(stage, path: str, body: Body, model_file: str, fixed: bool,
     mass.CreatePrincipalAxesAttr(Gf.Quatf(q))
 
 
-def export_usd(scene: Scene, path: str | Path, mesh_dir: str | Path | None = None,
+def export_usd(scene: Scene | HouseScene, path: str | Path, mesh_dir: str | Path | None = None,
                fixed: bool = False, physics: PhysicsConfig = DEFAULT_PHYSICS,
                catalog: Catalog | None = None) -> Path:
-    """Write ``scene`` as a USD stage to ``path`` (``.usda`` text, ``.usd``/``.usdc``
-    binary); each catalog model goes to ``mesh_dir`` (default ``<stem>_meshes/`` beside the
-    file) as a ``.usdc`` layer the stage references by relative path. ``fixed`` makes the
+    """Write ``scene``, a room or a whole house, as a USD stage to ``path`` (``.usda`` text,
+    ``.usd``/``.usdc`` binary); each catalog model goes to ``mesh_dir`` (default
+    ``<stem>_meshes/`` beside the file) as a ``.usdc`` layer the stage references by
+    relative path. ``fixed`` makes the
     furniture static colliders instead of rigid bodies."""
     from pxr import Gf, Sdf, Tf, Usd, UsdGeom, UsdPhysics, UsdShade  # usd-core: USD exports only
     path = Path(path)
@@ -133,10 +153,10 @@ def export_usd(scene: Scene, path: str | Path, mesh_dir: str | Path | None = Non
     surface.CreateStaticFrictionAttr(physics.friction)
     surface.CreateDynamicFrictionAttr(physics.friction)
     surface.CreateRestitutionAttr(0.0)
-    _room(stage, scene, physics_material)
+    _room(stage, architecture_of(scene), physics_material)
     UsdGeom.Xform.Define(stage, '/World/Objects')
     taken: set[str] = set()
-    for body in scene_bodies(scene, physics, catalog):
+    for body in world_bodies(scene, physics, catalog):
         model_file = './' + meshes.relative(meshes.usd(body.variant))
         name = identifier(body.id, taken)
         _object(stage, f'/World/Objects/{name}', body, model_file, fixed or body.fixed,
