@@ -2,6 +2,7 @@
 bytes each format takes per room.
 
     .venv/bin/python benchmarks/sim_rest.py [-n 50] [--room-type all] [--seconds 2]
+    .venv/bin/python benchmarks/sim_rest.py --houses -n 20
 
 For every room type, ``-n`` empty held-out corpus shells (seed ``HELDOUT_SEED``, indices
 0..n-1) are furnished by the shipped weights (seed = index), exported as SDF, glTF, MJCF, URDF
@@ -10,6 +11,10 @@ simulated for ``--seconds`` under gravity from the exported poses (``export.rest
 per format and engine: rooms passed, the largest displacement, rotation and contact
 penetration over all rooms, and the mean bytes of a self-contained room (the file, its mesh
 files and, for URDF, the object files and poses). One process, torch on one thread.
+
+With ``--houses``, ``-n`` procedural house plans (``corpus.house_plan``, plan seed
+``HELDOUT_SEED``, indices 0..n-1) are furnished whole (``house_synth.furnish_house``, seed =
+index) and each exported as one world.
 """
 import argparse
 from pathlib import Path
@@ -22,6 +27,7 @@ from scene_synth_ros.corpus import HELDOUT_SEED
 from scene_synth_ros.corpus.generate import empty_room
 from scene_synth_ros.export import FORMATS, write
 from scene_synth_ros.export.rest import RestLimits, mujoco_rest, pybullet_rest
+from scene_synth_ros.house import count_objects
 
 ENGINES = {'mjcf': ('MuJoCo', mujoco_rest), 'urdf': ('PyBullet', pybullet_rest)}
 
@@ -35,12 +41,23 @@ def main() -> int:
     ap.add_argument('-n', type=int, default=50, help='rooms per room type')
     ap.add_argument('--room-type', default='all')
     ap.add_argument('--seconds', type=float, default=2.0, help='simulated time per room')
+    ap.add_argument('--houses', action='store_true', help='-n furnished house plans, each '
+                    'one world')
     args = ap.parse_args()
     import torch
     torch.set_num_threads(1)
     from scene_synth_ros.synth import Synthesizer
     synth = Synthesizer()
     room_types = ROOM_TYPES if args.room_type == 'all' else (args.room_type,)
+    if args.houses:
+        room_types = ('house',)
+
+    def scene_of(rt: str, i: int):
+        if rt != 'house':
+            return synth.generate(empty_room(rt, HELDOUT_SEED, i), seed=i).scene
+        from scene_synth_ros.corpus.house_plan import house_plan
+        from scene_synth_ros.house_synth import furnish_house
+        return furnish_house(synth, house_plan(HELDOUT_SEED, i), seed=i).scene
     limits = RestLimits()
     sizes = {f: [] for f in FORMATS}
     rest = {f: {'passed': 0, 'rooms': 0, 'disp': 0.0, 'rot': 0.0, 'pen': 0.0, 'seconds': 0.0}
@@ -52,8 +69,8 @@ def main() -> int:
     with tempfile.TemporaryDirectory() as tmp:
         for rt in room_types:
             for i in range(args.n):
-                scene = synth.generate(empty_room(rt, HELDOUT_SEED, i), seed=i).scene
-                objects += len(scene.objects)
+                scene = scene_of(rt, i)
+                objects += count_objects(scene)
                 for fmt, f in FORMATS.items():
                     folder = Path(tmp) / f'{rt}_{i}_{fmt}'
                     path = write(scene, fmt, folder / f'room{f.suffix}', folder / 'meshes')
@@ -74,8 +91,11 @@ def main() -> int:
                         failures.append(f'{rt} {i} {ENGINES[fmt][0]}: '
                                         + '; '.join(report.failures(limits)))
     rooms = len(room_types) * args.n
-    print(f'{rooms} synthesized rooms ({args.n} per type: {", ".join(room_types)}), '
-          f'{objects / max(rooms, 1):.2f} objects per room, {args.seconds:g} s simulated each, '
+    what = (f'{rooms} furnished house plans' if args.houses else
+            f'{rooms} synthesized rooms ({args.n} per type: {", ".join(room_types)})')
+    print(f'{what}, '
+          f'{objects / max(rooms, 1):.2f} objects per {"house" if args.houses else "room"}, '
+          f'{args.seconds:g} s simulated each, '
           f'limits {limits.displacement * 1000:g} mm / {limits.rotation:g} deg / '
           f'{limits.penetration * 1000:g} mm')
     print(f'{"format":8s} {"engine":9s} {"passed":>10s} {"max move":>10s} {"max turn":>10s} '

@@ -171,3 +171,35 @@ def test_the_map_passes_doors_through_walls_a_wall_thickness_apart():
         entrance.opening.position
     reached = _reachable(grid, grid.cell_of(*start))
     assert reached[grid.cell_of(2.0, 3.5)]          # the middle of the bedroom
+
+
+def test_the_readme_apartment_commands_as_written(tmp_path):
+    """README's "A whole home": the six-room apartment furnished, exported as one world and
+    mapped by the commands as a user types them, and by the library's call it names."""
+    from pathlib import Path
+    import subprocess
+    import sys
+
+    from scene_synth_ros.export.rest import mujoco_rest
+    from scene_synth_ros.schema import load_layout
+    root = Path(__file__).resolve().parent.parent
+    block = (root / 'README.md').read_text().split('## A whole home\n', 1)[1]
+    commands = [c for c in block.split('```bash', 1)[1].split('```', 1)[0].splitlines()
+                if c.startswith('.venv/bin/scene-synth ')]
+    assert [c.split()[1] for c in commands] == ['generate', 'export', 'map']
+    (tmp_path / 'examples').symlink_to(root / 'examples')
+    (tmp_path / '.venv').mkdir()
+    (tmp_path / '.venv' / 'bin').symlink_to(Path(sys.executable).parent)
+    for line in commands:
+        done = subprocess.run(['bash', '-c', line], cwd=tmp_path, capture_output=True,
+                              text=True, timeout=300)
+        assert done.returncode == 0, f'$ {line}\n{done.stdout[-2000:]}\n{done.stderr[-2000:]}'
+    scene = parse_house_scene((tmp_path / 'apartment.json').read_text())
+    assert len(scene.scenes) == 6
+    assert all(s.objects for s in scene.scenes.values())
+    report = mujoco_rest(tmp_path / 'apartment' / 'world.xml')
+    assert report.bodies == len(scene.objects()) and report.passed(), report.failures()
+    assert (tmp_path / 'apartment_map.pgm').is_file()
+    again = furnish_house(Synthesizer(), load_layout(root / 'examples' /
+                                                     'apartment_layout.json').house, seed=0)
+    assert again.scene.to_dict()['rooms'] == scene.to_dict()['rooms']

@@ -194,6 +194,27 @@ def test_the_node_guide_house_commands_with_the_real_tools(launched):
     assert f'width: {want.width}' in info and f'height: {want.height}' in info, info
 
 
+def test_the_readme_apartment_through_the_node_with_the_real_tools(launched):
+    """README's "A whole home": the apartment's layout file published with `ros2 topic pub`,
+    the whole home's map echoed."""
+    from scene_synth_ros.occupancy import occupancy_grid
+    from scene_synth_ros.schema import parse_house_scene
+    section = (ROOT / 'README.md').read_text().split('## A whole home\n', 1)[1]
+    pub, echo_map = [c for c in section.split('\n## ', 1)[0].splitlines()
+                     if c.startswith('ros2 ')]
+    assert 'apartment_layout.json' in pub and '/map' in echo_map
+    _sh(pub, launched.env)
+    deadline = time.monotonic() + 90
+    while '"bathroom"' not in (text := _sh(ECHO_SCENE, launched.env).rsplit('---', 1)[0]):
+        assert time.monotonic() < deadline, text[-400:]
+        time.sleep(0.5)
+    house = parse_house_scene(text)
+    assert len(house.scenes) == 6 and all(s.objects for s in house.scenes.values())
+    want = occupancy_grid(house)
+    info = _sh(echo_map, launched.env)
+    assert f'width: {want.width}' in info and f'height: {want.height}' in info, info
+
+
 def test_a_layout_latched_before_the_node_starts_is_furnished(tmp_path):
     """A simulator publishes its layout transient local at start-up, before the node is
     up: the node furnishes it once started."""
