@@ -24,6 +24,11 @@ cores were free.
         [--device cpu|cuda]
         [--soak 10000] [--soak-workers 2] [--weights-dir DIR] [--keep DIR]
     .venv/bin/python benchmarks/bench_batch.py --soak-report DIR/soak
+    .venv/bin/python benchmarks/bench_batch.py --room-type house -n 40 --workers 1 2 --ray
+
+``--room-type house`` furnishes procedural house plans (``generate -n N --houses``), a whole
+house a row, each house's rooms in lockstep (so ``--lockstep`` is 1); ``--ray`` runs each
+worker count on a Ray started on this machine for the batch, besides the processes.
 """
 import argparse
 from collections import defaultdict
@@ -52,11 +57,13 @@ def _rows(out: Path) -> list[dict]:
 
 def _batch(out: Path, room_type: str, n: int, workers: int, weights: str | None,
            progress: bool = False, lockstep: int | None = None,
-           location_batch: int | None = None, runtime: str = 'auto', device: str = 'cpu'):
+           location_batch: int | None = None, runtime: str = 'auto', device: str = 'cpu',
+           ray: str | None = None):
     synthesis = SynthConfig(runtime=runtime, device=device)
     if location_batch is not None:
         synthesis.location_batch = location_batch
-    cfg = BatchConfig(out=out, source=Source.shells([room_type]), n=n, workers=workers,
+    source = Source.plans() if room_type == 'house' else Source.shells([room_type])
+    cfg = BatchConfig(out=out, source=source, n=n, workers=workers, ray=ray,
                       weights_dir=weights, progress=progress, synthesis=synthesis,
                       **({} if lockstep is None else {'lockstep': lockstep}))
     return run_batch(cfg, echo=lambda s: None)
@@ -64,14 +71,16 @@ def _batch(out: Path, room_type: str, n: int, workers: int, weights: str | None,
 
 def throughput(room_type: str, n: int, workers: int, lockstep: int, weights: str | None,
                root: Path, location_batch: int | None, runtime: str = 'auto',
-               device: str = 'cpu') -> None:
+               device: str = 'cpu', ray: str | None = None) -> None:
     print(f'  before: {_load()}', flush=True)
-    out = root / f'speed_{workers}_{lockstep}_{runtime}_{device}'
+    out = root / f'speed_{workers}_{lockstep}_{runtime}_{device}_{"ray" if ray else "pool"}'
     s = _batch(out, room_type, n, workers, weights, lockstep=lockstep,
-               location_batch=location_batch, runtime=runtime, device=device)
+               location_batch=location_batch, runtime=runtime, device=device, ray=ray)
     chosen = json.loads((out / 'batch.json').read_text())['synthesis']['runtime']
     if device != 'cpu':
         chosen += f' on {device}'
+    if ray:
+        chosen += ', Ray actors'
     rows = _rows(out)
     ok = [r for r in rows if r['status'] == 'ok']
     if not ok:
@@ -81,7 +90,7 @@ def throughput(room_type: str, n: int, workers: int, lockstep: int, weights: str
     secs = sorted(r['seconds'] for r in ok)
     cpu = [r['cpu_seconds'] for r in ok]
     print(f'{workers} worker(s), lockstep {lockstep}, {chosen}: {n} {room_type}s in '
-          f'{s.seconds:.1f} s = {s.rooms_per_second:.2f} rooms/s (start-up included); '
+          f'{s.seconds:.1f} s = {s.rooms_per_second:.2f} {room_type}s/s (start-up included); '
           f'{len(ok)} ok, '
           f'{s.objects_per_room:.2f} objects a room, {s.valid} valid, '
           f'{s.robot_kept} robot promise kept; per room in a worker: '
@@ -133,7 +142,8 @@ def main():
     ap.add_argument('--workers', type=int, nargs='+', default=[1, 2])
     ap.add_argument('--lockstep', type=int, nargs='+', default=[1, 8, 32])
     ap.add_argument('--location-batch', type=int, default=None)
-    ap.add_argument('--room-type', default='bedroom')
+    ap.add_argument('--room-type', default='bedroom', help='a room type, or house')
+    ap.add_argument('--ray', action='store_true', help='each worker count on Ray actors too')
     ap.add_argument('--runtime', nargs='+', default=['auto'],
                     choices=('auto', 'torch', 'onnxruntime'))
     ap.add_argument('--device', default='cpu', choices=('cpu', 'cuda', 'auto'))
@@ -149,12 +159,14 @@ def main():
         return
     with tempfile.TemporaryDirectory(prefix='bench-batch-') as tmp:
         root = Path(args.keep or tmp)
+        lockstep = [1] if args.room_type == 'house' else args.lockstep
         if args.n:
             for w in args.workers:
-                for r in args.lockstep:
+                for r in lockstep:
                     for runtime in args.runtime:
-                        throughput(args.room_type, args.n, w, r, args.weights_dir, root,
-                                   args.location_batch, runtime, args.device)
+                        for ray in (None, 'local') if args.ray else (None,):
+                            throughput(args.room_type, args.n, w, r, args.weights_dir,
+                                       root, args.location_batch, runtime, args.device, ray)
         if args.soak:
             soak(args.room_type, args.soak, args.soak_workers, args.weights_dir, root)
 

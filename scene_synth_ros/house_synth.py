@@ -1,5 +1,6 @@
 """Furnishing a whole house: every room of a house layout by its own room type's networks,
-the rooms in lockstep (``lockstep``), so that their forward passes are batched together.
+the rooms of each type in lockstep (``lockstep``), so that their forward passes are batched
+together.
 
 Each room is furnished as a room alone would be, with the doors on its walls: a door between
 two rooms is in both rooms' layouts, so its clearance is kept on both of its sides, and each
@@ -60,7 +61,8 @@ def furnish_house(synth: Synthesizer, house: House | HouseScene, seed: int = 0,
                   cancel: Callable[[], bool] | None = None, width: int | None = None,
                   config: SynthConfig | None = None) -> HouseSynthesis:
     """Every room of ``house`` furnished, room ``k`` (layout order) with
-    ``room_seed(seed, k)``, all in lockstep (at most ``width`` at a time; all by default):
+    ``room_seed(seed, k)``, the rooms of each room type in lockstep (at most ``width`` at a
+    time; all by default), one type after another:
     from empty, or for a HouseScene around the objects its rooms hold. A room that cannot
     be furnished (too large for its type, no weights for its type) raises
     HouseSynthesisError naming it; ``cancel`` and ``config`` (as for
@@ -81,7 +83,16 @@ def furnish_house(synth: Synthesizer, house: House | HouseScene, seed: int = 0,
             return synth.complete(Scene(room, held), room_seed(seed, k), cancel, config)
         return run
 
-    results = lockstep.run([furnish(k) for k in range(len(ids))], width)
+    # Rooms of one type in lockstep, one type after another: rooms of different types
+    # share no forward pass, and taking turns between their networks only evicts each
+    # other's weights from the caches (docs/design/speed.md).
+    by_type: dict[str, list[int]] = {}
+    for k, rid in enumerate(ids):
+        by_type.setdefault(house.rooms[rid].room_type, []).append(k)
+    results: list = [None] * len(ids)
+    for ks in by_type.values():
+        for k, out in zip(ks, lockstep.run([furnish(k) for k in ks], width), strict=True):
+            results[k] = out
     rooms: dict[str, Synthesis] = {}
     for rid, out in zip(ids, results, strict=True):
         # A room's bad input, named; a cancel or a bug goes up as it is.

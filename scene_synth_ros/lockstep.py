@@ -140,6 +140,8 @@ def each(calls: Sequence[Callable[[], T]], width: int | None = None,
                     continue
                 ended.append((k, out))
                 todo.discard(k)
+                if not todo:        # a room that never asks (a house, its own lockstep)
+                    break           # ends within one pass: start none after the last needed
                 if started < len(rooms):
                     queue.append((started, ()))
                     started += 1

@@ -9,7 +9,13 @@
   time (``F``);
 - a directory (``--layouts DIR``, ``complete DIR``): its ``*.json``, ``*.yaml`` and ``*.yml``
   files in name order (the file's name);
-- a JSON-lines file (``*.jsonl``): its non-blank lines (``rooms.jsonl:17``, the line).
+- a JSON-lines file (``*.jsonl``): its non-blank lines (``rooms.jsonl:17``, the line);
+- house plans (``generate -n --houses``): procedural house plan ``i`` of plan seed ``seed``
+  (``corpus.house_plan``), a whole house (``house plan: plan seed 0, house 42``).
+
+A document may be a house layout or house scene as well as a room's (``schema.is_house``):
+the house is furnished whole (``house_synth.furnish_house``), one house to a row, its files
+named as a room's.
 
 So room 0 of ``generate -n N --seed S`` is the room of ``generate --seed S``, and any room is
 made again alone from its scene file and seed (``generate --layout
@@ -29,7 +35,7 @@ from typing import Iterator
 from ..categories import PAPER, Vocabulary
 from ..errors import SceneSynthError
 from ..limits import MAX_PAYLOAD_BYTES
-from ..schema import parse_room_layout, parse_scene, read_payload
+from ..schema import is_house, parse_layout, parse_room_layout, parse_scene, read_payload
 
 LAYOUT_SUFFIXES = ('.json', '.yaml', '.yml')
 
@@ -51,6 +57,7 @@ class RoomJob:
     layout: str                     # where the room comes from, as the manifest names it
     room_type: str | None = None    # a shell of this type (corpus seed ``shell_seed``)...
     shell_seed: int = 0
+    house_plan: bool = False        # ...or house plan ``index`` of plan seed ``shell_seed``...
     data: bytes | None = None       # ...or a layout or scene, JSON or YAML
     problem: str | None = None      # why the document could not be read
 
@@ -90,7 +97,7 @@ def _jsonl_lines(path: Path) -> Iterator[tuple[int, bytes]]:
 class Source:
     """Where a batch's rooms come from (see the module docstring)."""
 
-    kind: str                       # 'shells', 'file', 'directory' or 'jsonl'
+    kind: str                       # 'shells', 'plans', 'file', 'directory' or 'jsonl'
     room_types: tuple[str, ...] = ()
     path: str = ''
 
@@ -105,6 +112,11 @@ class Source:
                              f'trained on, and the corpus makes only the package\'s own: '
                              f'give --layouts')
         return cls('shells', types)
+
+    @classmethod
+    def plans(cls) -> Source:
+        """Procedural house plans, a whole house a row."""
+        return cls('plans')
 
     @classmethod
     def at(cls, path: str | os.PathLike) -> Source:
@@ -124,6 +136,8 @@ class Source:
     def identity(self) -> dict:
         # Shells name how they are drawn: a directory whose rooms are the corpus rooms' own
         # shells (before first_shell) must not be resumed with others.
+        if self.kind == 'plans':
+            return {'kind': self.kind}
         return ({'kind': self.kind, 'room_types': list(self.room_types),
                  'shells': 'first attempt'}
                 if self.kind == 'shells' else {'kind': self.kind, 'path': self.path})
@@ -137,6 +151,9 @@ class Source:
             return [RoomJob(i, seed + i, f'{self.room_types[i % k]} shell: corpus seed {seed}, '
                             f'room {i}', room_type=self.room_types[i % k], shell_seed=seed)
                     for i in range(n)]
+        if self.kind == 'plans':
+            return [RoomJob(i, seed + i, f'house plan: plan seed {seed}, house {i}',
+                            shell_seed=seed, house_plan=True) for i in range(n)]
         if self.kind == 'file':
             return [RoomJob(i, seed + i, str(path)) for i in range(n)]
         if self.kind == 'directory':
@@ -171,9 +188,11 @@ class Source:
 
 def scene_from_document(data: bytes, models=None, vocabulary: Vocabulary = PAPER):
     """A scene or room layout (JSON or YAML) as a validated Scene, as ``schema.load_scene``
-    reads a file; model ids are those of ``models`` (a ``catalog.Catalog``, default the
-    procedural one)."""
+    reads a file, or a house layout or house scene as a HouseScene; model ids are those of
+    ``models`` (a ``catalog.Catalog``, default the procedural one)."""
     d = read_payload(data)
+    if is_house(d):
+        return parse_layout(d, models, vocabulary)
     if isinstance(d, dict) and 'room' not in d:
         return parse_room_layout(d, models, vocabulary)
     return parse_scene(d, models, vocabulary)

@@ -25,6 +25,7 @@ class BatchSummary:
     objects_per_room: float = 0.0
     valid: int = 0
     robot_kept: int = 0
+    unit: str = 'rooms'             # what a row is: a room, or a whole house (``--houses``)
 
     @property
     def rooms_per_second(self) -> float:
@@ -36,20 +37,21 @@ class BatchSummary:
 
     def report(self) -> str:
         """A few lines for people."""
-        lines = [f'{self.out}: {self.requested} rooms asked for; {self.furnished} furnished '
+        u = self.unit
+        lines = [f'{self.out}: {self.requested} {u} asked for; {self.furnished} furnished '
                  f'and {self.failed} failed in {self.seconds:.1f} s '
-                 f'({self.rooms_per_second:.2f} rooms/s on {self.workers} '
+                 f'({self.rooms_per_second:.2f} {u}/s on {self.workers} '
                  f'{"Ray worker" if self.backend == "ray" else "worker process"}'
                  f'{"" if self.workers == 1 else "es" if self.backend != "ray" else "s"}), '
                  f'{self.skipped} already there']
         if self.rooms_ok:
-            lines.append(f'the directory holds {self.rooms_ok} rooms, '
+            lines.append(f'the directory holds {self.rooms_ok} {u}, '
                          f'{self.objects_per_room:.2f} objects each; physically valid: '
                          f'{self.valid}, robot promise kept: {self.robot_kept}')
         if self.peak_mb:
             lines.append(f'peak memory per worker: {max(self.peak_mb.values()):.0f} MB at most')
         if self.rooms_failed:
-            lines.append(f'{self.rooms_failed} rooms failed: their rows in manifest.jsonl say '
+            lines.append(f'{self.rooms_failed} {u} failed: their rows in manifest.jsonl say '
                          'why')
         return '\n'.join(lines)
 
@@ -65,4 +67,5 @@ def summarize(cfg: BatchConfig, manifest: Manifest, requested: int, furnished: i
         rooms_ok=len(ok), rooms_failed=len(manifest.rows) - len(ok),
         objects_per_room=round(sum(r.get('objects', 0) for r in ok) / len(ok), 3) if ok else 0.0,
         valid=sum(bool(r.get('valid')) for r in ok),
-        robot_kept=sum(bool(r.get('robot_kept')) for r in ok))
+        robot_kept=sum(bool(r.get('robot_kept')) for r in ok),
+        unit='houses' if cfg.source.kind == 'plans' else 'rooms')

@@ -39,12 +39,15 @@ from typing import Iterator
 
 from .. import export, lockstep
 from ..corpus.generate import first_shell
+from ..corpus.house_plan import house_plan
 from ..errors import SceneSynthError, sentence
 from ..geometry import check_scene
+from ..house import House, HouseScene
+from ..house_synth import furnish_house
 from ..networks.runtime import set_threads
-from ..plot import save_png
+from ..plot import save_house_png, save_png
 from ..scene import Scene
-from ..schema import dump_scene
+from ..schema import dump_house_scene, dump_scene
 from ..synth import SynthConfig, Synthesizer
 from ..user_catalog import load_catalog
 from .sources import BatchError, RoomJob, scene_from_document
@@ -206,12 +209,17 @@ class Worker:
     def _furnish(self, job: RoomJob, files: dict[str, bytes]) -> dict:
         if job.problem:
             raise BatchError(job.problem)
+        if job.house_plan:
+            return self._furnish_house(job, house_plan(job.shell_seed, job.index), files)
         if job.room_type is not None:
             scene = Scene(first_shell(job.room_type, job.shell_seed, job.index), [])
         else:
             vocabulary = self.synth.vocabulary
             scene = scene_from_document(
                 job.data, load_catalog(self.spec.synthesis.catalog, vocabulary), vocabulary)
+            if isinstance(scene, HouseScene):
+                return self._furnish_house(
+                    job, scene.house if self.spec.mode == 'generate' else scene, files)
         furnish = self.synth.generate if self.spec.mode == 'generate' else self.synth.complete
         result = furnish(scene, job.seed)
         files.update(self.files(job.name, result.scene))
@@ -225,6 +233,24 @@ class Worker:
         out['files'] = output_files(job.name, self.spec.png, self.spec.exports)
         return out
 
+    def _furnish_house(self, job: RoomJob, house: House | HouseScene,
+                       files: dict[str, bytes]) -> dict:
+        """A whole house in one row: ``room_type`` ``house``, its ``rooms``, and ``valid``
+        and ``robot_kept`` for every room of it."""
+        result = furnish_house(self.synth, house, job.seed, config=self.spec.synthesis)
+        files.update(self.files(job.name, result.scene))
+        reports = {rid: check_scene(r.scene, r.allowance) for rid, r in result.rooms.items()}
+        out = {'room_type': 'house', 'rooms': len(reports),
+               'area': round(result.scene.house.area, 2),
+               'objects': len(result.scene.objects()),
+               'added': sum(len(r.added) for r in result.rooms.values()), 'stopped': 'stop',
+               'valid': all(r.ok for r in reports.values()), 'robot_kept': result.robot_kept}
+        broken = [f'{rid}: {r.summary()}' for rid, r in reports.items() if not r.ok]
+        if broken:
+            out['problems'] = '; '.join(broken)
+        out['files'] = output_files(job.name, self.spec.png, self.spec.exports)
+        return out
+
     def files(self, name: str, scene) -> dict[str, bytes]:
         """The room's files: shared models first, then what refers to them, the scene last,
         so that a reader who finds a file finds what it names."""
@@ -232,7 +258,11 @@ class Worker:
         shared, own = {}, {}
         with tempfile.TemporaryDirectory(prefix='scene-synth-batch-') as tmp:
             root = Path(tmp)
-            if self.spec.png:
+            if self.spec.png and isinstance(scene, HouseScene):
+                (root / THUMBNAILS).mkdir()
+                save_house_png(scene, root / THUMBNAILS / f'{name}.png', title=name,
+                               vocabulary=self.synth.vocabulary, dpi=THUMBNAIL['dpi'])
+            elif self.spec.png:
                 (root / THUMBNAILS).mkdir()
                 save_png(scene, root / THUMBNAILS / f'{name}.png', title=name,
                          vocabulary=self.synth.vocabulary, **THUMBNAIL)
@@ -251,6 +281,7 @@ class Worker:
                     own[rel] = p.read_bytes()
             for rel in sorted(primary - {f'{SCENES}/{name}.json'}):
                 own[rel] = (root / rel).read_bytes()
-        own[f'{SCENES}/{name}.json'] = (dump_scene(scene, models, self.synth.vocabulary)
+        dump = dump_house_scene if isinstance(scene, HouseScene) else dump_scene
+        own[f'{SCENES}/{name}.json'] = (dump(scene, models, self.synth.vocabulary)
                                         + '\n').encode('utf-8')
         return {**shared, **own}

@@ -34,8 +34,11 @@ def add_parser(sub) -> None:
                        'empty room drawn from the seed. The same seed gives the same room. '
                        'With -n or --layouts, furnish a batch of rooms into a directory.')
     c.add_argument('--room-type', default='bedroom', help=f'{"|".join(ROOM_TYPES)}')
-    c.add_argument('--layout', help='a room layout JSON (default: a corpus-like empty room '
-                   'drawn from the seed)')
+    c.add_argument('--layout', help='a room or house layout JSON (default: a corpus-like '
+                   'empty room drawn from the seed)')
+    c.add_argument('--houses', action='store_true', help='with -n: whole houses, procedural '
+                   'house plan i of the seed furnished with seed --seed + i (--lockstep 1 '
+                   'unless given: the rooms of each house are in lockstep)')
     _synthesis_options(c, batch=True)
     _batch_options(c, layouts=True)
     c.set_defaults(func=cmd_generate)
@@ -258,6 +261,8 @@ def cmd_complete(args) -> int:
 
 def _one_room_only(args) -> None:
     """UserError for a batch's options given to the one-room command."""
+    if getattr(args, 'houses', False):
+        raise UserError('--houses is for batches: add -n N and --out DIR')
     for flag, value in (('--workers', args.workers), ('--ray', args.ray),
                         ('--export', args.export), ('--lockstep', args.lockstep)):
         if value is not None:
@@ -279,8 +284,12 @@ def _cmd_batch(args, mode: str) -> int:
         source = Source.at(args.scene)
     elif args.layouts and args.layout:
         raise UserError('give --layout (one room, -n times) or --layouts (many), not both')
+    elif args.houses and (args.layouts or args.layout):
+        raise UserError('--houses draws house plans: give it without --layout and --layouts')
     elif args.layouts or args.layout:
         source = Source.at(args.layouts or args.layout)
+    elif args.houses:
+        source = Source.plans()
     else:
         source = Source.shells(room_types(args.room_type, args.vocabulary), args.vocabulary)
     from ..export import parse_formats
@@ -291,9 +300,18 @@ def _cmd_batch(args, mode: str) -> int:
         out=args.out, source=source, mode=mode, n=args.n, seed=args.seed,
         synthesis=_synth_config(args), weights_dir=args.weights_dir, workers=args.workers,
         png=args.png is True, exports=exports, ray=args.ray, progress=not args.quiet,
-        **({} if args.lockstep is None else {'lockstep': args.lockstep})))
+        **_lockstep(args)))
     print(summary.report())
     return 1 if summary.failed else 0
+
+
+def _lockstep(args) -> dict:
+    """The batch's lockstep R, where the command line gives or implies one: a house's rooms
+    are furnished in lockstep already, so houses go one to a worker at a time (R = 1),
+    spread over every worker."""
+    if args.lockstep is not None:
+        return {'lockstep': args.lockstep}
+    return {'lockstep': 1} if getattr(args, 'houses', False) else {}
 
 
 def cmd_suggest(args) -> int:
