@@ -92,8 +92,8 @@ def throughput(room_type: str, n: int, workers: int, lockstep: int, weights: str
     print(f'{workers} worker(s), lockstep {lockstep}, {chosen}: {n} {room_type}s in '
           f'{s.seconds:.1f} s = {s.rooms_per_second:.2f} {room_type}s/s (start-up included); '
           f'{len(ok)} ok, '
-          f'{s.objects_per_room:.2f} objects a room, {s.valid} valid, '
-          f'{s.robot_kept} robot promise kept; per room in a worker: '
+          f'{s.objects_per_room:.2f} objects a {room_type}, {s.valid} valid, '
+          f'{s.robot_kept} robot promise kept; per {room_type} in a worker: '
           + (f'median {secs[len(secs) // 2]:.3f} s, ' if lockstep == 1 else '')
           + f'mean {sum(secs) / len(secs):.3f} s, CPU {sum(cpu) / len(cpu):.3f} s; peak resident '
           f'memory per worker: {", ".join(f"{v:.0f}" for v in s.peak_mb.values())} MB',

@@ -108,8 +108,22 @@ def test_the_command_furnishes_a_house_layout_and_draws_it(cli, tmp_path):
     scene = parse_house_scene(out.read_text())
     assert sorted(scene.scenes) == ['bed', 'hall', 'kitchen'] and scene.objects()
     assert png.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
+    # complete keeps a house scene's objects and furnishes the rest of every room
+    partial = json.loads(out.read_text())
+    kept = partial['rooms'][1]['objects'][:2]
+    partial['rooms'][1]['objects'] = kept
+    partial['rooms'][0]['objects'] = []
+    (tmp_path / 'partial.json').write_text(json.dumps(partial))
+    r = cli('complete', str(tmp_path / 'partial.json'), '--seed', '4', '--out',
+            str(tmp_path / 'done.json'))
+    done = parse_house_scene((tmp_path / 'done.json').read_text())
+    rid = partial['rooms'][1]['id']
+    bed = done.scenes[rid]
+    given = parse_house_scene(partial).scenes[rid].objects
+    assert [o.to_dict() for o in bed.objects[:2]] == [o.to_dict() for o in given]
+    assert len(bed.objects) > 2 and done.scenes['hall'].objects
     # A house where one room is expected says so in one line.
-    r = cli('complete', str(layout), '--out', str(tmp_path / 'x.json'), ok=False)
+    r = cli('suggest', str(layout), ok=False)
     assert r.returncode == 2 and 'house layout' in r.stderr and r.stderr.count('\n') == 1, \
         r.stderr
 

@@ -183,7 +183,7 @@ def cmd_generate(args) -> int:
         from ..house import HouseScene
         layout = load_layout_file(args.layout, vocabulary=synth.vocabulary)
         if isinstance(layout, HouseScene):        # objects given are dropped, as a room's
-            return _generate_house(args, synth, layout.house)
+            return _furnish_house(args, synth, layout.house, args.layout)
         room = layout.room
         title = f'{Path(args.layout).stem} (seed {args.seed})'
     else:
@@ -208,11 +208,14 @@ def cmd_generate(args) -> int:
     return 0
 
 
-def _generate_house(args, synth, house) -> int:
-    """``generate --layout`` of a house layout: every room furnished, in lockstep."""
+def _furnish_house(args, synth, house, source: str) -> int:
+    """``generate --layout`` of a house layout (a ``House``: every room furnished from
+    empty) or ``complete`` of a house scene (a ``HouseScene``: its objects kept), the rooms of
+    a type in lockstep; ``source`` is the file, for the picture's title."""
     from ..geometry import check_scene
     from ..house_synth import furnish_house
     result = furnish_house(synth, house, args.seed)
+    house = result.scene.house
     for rid, r in result.rooms.items():
         room = house.rooms[rid]
         print(f'{rid} ({room.room_type}, {room.area:.1f} m2): {len(r.scene.objects)} objects; '
@@ -230,7 +233,7 @@ def _generate_house(args, synth, house) -> int:
     if args.png:
         from ..plot import save_house_png
         Path(args.png).parent.mkdir(parents=True, exist_ok=True)
-        save_house_png(result.scene, args.png, title=f'{Path(args.layout).stem} (seed '
+        save_house_png(result.scene, args.png, title=f'{Path(source).stem} (seed '
                        f'{args.seed})', vocabulary=synth.vocabulary)
         print(f'wrote {args.png}')
     return 0
@@ -244,7 +247,10 @@ def cmd_complete(args) -> int:
     _one_room_only(args)
     synth = _synthesizer(args)
     models = load_catalog(args.catalog, synth.vocabulary)
-    scene = load_scene_file(args.scene, models, synth.vocabulary)
+    scene = load_layout_file(args.scene, models, synth.vocabulary)
+    from ..house import HouseScene
+    if isinstance(scene, HouseScene):
+        return _furnish_house(args, synth, scene, args.scene)
     result = synth.complete(scene, args.seed)
     print(object_table(scene.objects, f'kept ({len(scene.objects)}):'))
     print(object_table(result.added, f'added ({len(result.added)}):'))
