@@ -177,3 +177,27 @@ def test_same_seed_same_room_and_worker_count_does_not_matter():
     serial = [s.to_dict() for s in generate_corpus('office', 12, seed=2, workers=1)]
     parallel = [s.to_dict() for s in generate_corpus('office', 12, seed=2, workers=2)]
     assert serial == parallel
+
+
+def test_real_sizes_draw_rooms_as_large_as_real_ones_and_keep_them_valid():
+    from scene_synth_ros.corpus.shell import real_sizes
+    from scene_synth_ros.render import room_frame_box
+    from scene_synth_ros.thresholds import MAX_ROOM_SIDE
+    sizes = real_sizes('bedroom')
+    assert sizes is not None and real_sizes('bathroom') is None     # too few real bathrooms
+    rooms = list(generate_corpus('bedroom', 40, seed=3, workers=2, real_sizes=True))
+    spans = [max(room_frame_box(r.room).span) for r in rooms]
+    paper = [max(room_frame_box(r.room).span) for r in generate_corpus('bedroom', 40, seed=3,
+                                                                        workers=2)]
+    cap = room_spec('bedroom').size_cap
+    assert max(paper) <= cap and sum(s > cap for s in spans) >= 5, spans
+    assert max(spans) <= MAX_ROOM_SIDE
+    # the real rooms' median area, within what 40 draws allow
+    median = float(np.median([r.room.area for r in rooms]))
+    assert 0.6 * sizes.area[3] <= median <= 1.6 * sizes.area[3], (median, sizes.area)
+    for scene in rooms:
+        assert geometry.check_scene(scene).ok, geometry.check_scene(scene).summary()
+    # a type without enough real rooms keeps its square
+    baths = list(generate_corpus('bathroom', 10, seed=3, workers=1, real_sizes=True))
+    assert all(max(room_frame_box(r.room).span) <= room_spec('bathroom').size_cap
+               for r in baths)
