@@ -28,6 +28,16 @@ class HouseSynthesisError(SceneSynthError, ValueError):
     """A room of the house could not be furnished; the sentence names the room."""
 
 
+def check_house_fits(house: House, vocabulary) -> None:
+    """``synth.check_room_fits`` of every room (a room too small or too large for its type's
+    furniture), as HouseSynthesisError naming the first room that does not fit."""
+    for rid, room in house.rooms.items():
+        try:
+            check_room_fits(room, vocabulary)
+        except SceneSynthError as e:
+            raise HouseSynthesisError(f'room {quoted(rid)}: {e}') from e
+
+
 def room_seed(seed: int, index: int) -> int:
     """The synthesis seed of room ``index`` (layout order) of a house furnished with
     ``seed``: distinct for every room and house seed, the same on every machine."""
@@ -72,6 +82,7 @@ def furnish_house(synth: Synthesizer, house: House | HouseScene, seed: int = 0,
     t0 = time.perf_counter()
     given = house if isinstance(house, HouseScene) else None
     house = house.house if isinstance(house, HouseScene) else house
+    check_house_fits(house, synth.vocabulary)       # before any room is furnished
     ids = list(house.rooms)
 
     def furnish(k: int) -> Callable[[], Synthesis]:
@@ -79,7 +90,6 @@ def furnish_house(synth: Synthesizer, house: House | HouseScene, seed: int = 0,
         held = list(given.scenes[ids[k]].objects) if given is not None else []
 
         def run() -> Synthesis:
-            check_room_fits(room, synth.vocabulary)
             return synth.complete(Scene(room, held), room_seed(seed, k), cancel, config)
         return run
 

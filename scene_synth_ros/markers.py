@@ -25,6 +25,7 @@ from . import colors
 from .catalog import Catalog
 from .categories import PAPER, Vocabulary
 from .export import WALL_THICKNESS, wall_boxes
+from .export.architecture import house_wall_boxes
 from .house import HouseScene
 from .meshes import file_uri, mesh_scale, package_uri, shipped_variant, user_marker
 from .scene import Opening, PlacedObject, Room, Scene
@@ -177,7 +178,10 @@ def scene_markers(scene: Scene, style: str = 'cube', catalog: Catalog | None = N
 def house_markers(house: HouseScene, style: str = 'cube', catalog: Catalog | None = None,
                   vocabulary: Vocabulary = PAPER) -> list[MarkerSpec]:
     """``scene_markers`` of every room of a furnished house, each room's in namespaces of
-    its own (``ROOM_ID/walls``, ``ROOM_ID/labels``, ...), so that RViz shows or hides a
-    room at once; a wall two rooms share is drawn in both."""
-    return [replace(m, ns=f'{rid}/{m.ns}') for rid, scene in house.scenes.items()
-            for m in scene_markers(scene, style, catalog, vocabulary)]
+    its own (``ROOM_ID/floor``, ``ROOM_ID/labels``, ...), so that RViz shows or hides a
+    room at once, and the house's walls in ``walls``, each once as the exports have them
+    (``export.architecture.house_wall_boxes``)."""
+    out = [replace(m, ns=f'{rid}/{m.ns}') for rid, scene in house.scenes.items()
+           for m in scene_markers(scene, style, catalog, vocabulary) if m.ns != 'walls']
+    return out + [MarkerSpec('walls', k, 'cube', b.centre, b.yaw, b.size, part_color('walls'))
+                  for k, b in enumerate(house_wall_boxes(house.house))]

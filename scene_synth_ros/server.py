@@ -42,7 +42,7 @@ from .export import FORMATS as EXPORT_FORMATS
 from .export import UnknownFormat, parse_formats, write
 from .files import write_atomic
 from .house import HouseScene, count_objects
-from .house_synth import furnish_house
+from .house_synth import check_house_fits, furnish_house
 from .markers import MARKER_STYLES
 from .networks.config import device_name
 from .networks.runtime import set_threads
@@ -476,8 +476,10 @@ class SceneServer:
             models, vocabulary = self._catalog, self._synth.vocabulary
         try:
             scene = parse_layout(payload, models, vocabulary)
-            if isinstance(scene, Scene):       # a house's rooms were checked as parsed
+            if isinstance(scene, Scene):
                 check_room_fits(scene.room, vocabulary)
+            else:
+                check_house_fits(scene.house, vocabulary)
         except SceneSynthError as e:
             self._reject(f'{source}: {e}')
             return sentence(e)
@@ -757,8 +759,11 @@ class SceneServer:
                        synth: Synthesizer, models: Catalog) -> None:
         """``job`` on a house: a house layout, or a request on the house served now, on
         one room of it (``job.room``) or, for ``generate`` and ``reset``, on every room."""
-        base = HouseScene(base.house, {rid: in_catalog(s, models, synth.vocabulary)
-                                       for rid, s in base.scenes.items()}, dict(base.meta))
+        house = base.house
+        if job.kind != 'layout':    # the layout's request id named the house that answered it
+            house = replace(house, meta=_answered(house.meta))
+        base = HouseScene(house, {rid: in_catalog(s, models, synth.vocabulary)
+                                  for rid, s in base.scenes.items()}, _answered(base.meta))
         rid, rooms = job.room, list(base.house.rooms)
         if rid and rid not in base.scenes:
             job.message = (f'room {quoted(rid)} is not a room of the house served now; its '
@@ -787,7 +792,12 @@ class SceneServer:
         seed = self._job_seed(job)
 
         def with_room(scene: Scene) -> HouseScene:
-            scenes = dict(base.scenes)
+            # The house as it is now, not as it was when this job started: a generate of one
+            # room serves short calls on the others meanwhile (``_between``), and keeps them.
+            # (Within the job's epoch the house served is this one; else it is not committed.)
+            with self._lock:
+                now = self._scene
+            scenes = dict((now if isinstance(now, HouseScene) else base).scenes)
             scenes[rid] = Scene(scene.room, scene.objects, {})
             return HouseScene(base.house, scenes,
                               {**_answered(base.meta), 'generator': 'scene_synth_ros',

@@ -22,6 +22,8 @@ from scene_synth_ros.export.architecture import (
 )
 from scene_synth_ros.export.labels import semantic_label
 from scene_synth_ros.export.physics import world_bodies
+from scene_synth_ros.files import safe_name
+from scene_synth_ros.house import HouseScene
 from scene_synth_ros.house_synth import furnish_house
 from scene_synth_ros.schema import parse_house_layout
 
@@ -102,10 +104,7 @@ def test_every_object_carries_its_category_as_a_semantic_label(tmp_path):
     by_name = {m.get('name'): m for m in world.findall('model')}
     bodies = world_bodies(scene)
     for body in bodies + [None]:
-        name = 'floor_0' if body is None else next(
-            n for n in by_name if n.startswith(body.id.split('/')[0]) and
-            n.endswith(body.id.split('/')[1]))
-        plugin = by_name[name].find('plugin')
+        plugin = by_name['floor_0' if body is None else safe_name(body.id)].find('plugin')
         assert plugin.get('filename') == 'gz-sim-label-system'
         assert plugin.get('name') == 'gz::sim::systems::Label'
         want = semantic_label('floor' if body is None else body.category)
@@ -142,3 +141,19 @@ def test_a_house_stands_still_in_mujoco_and_pybullet(which, tmp_path):
                    pybullet_rest(export_urdf(scene, tmp_path / 'house.urdf'))):
         assert report.bodies == n
         assert report.passed(), (report.engine, report.failures())
+
+
+def test_object_names_stay_apart_whatever_the_ids_of_rooms_and_objects(tmp_path):
+    from dataclasses import replace
+    mujoco = pytest.importorskip('mujoco')
+    scene = furnished('three rooms')
+    hall, bed, kitchen = (scene.scenes[r] for r in ('hall', 'bed', 'kitchen'))
+    # room 'a/b' holding 'c' and room 'a' holding 'b/c' would both be 'a/b/c' if joined
+    odd = HouseScene(scene.house, {
+        'a/b': replace(hall, objects=[replace(hall.objects[0], id='c')] + hall.objects[1:]),
+        'a': replace(bed, objects=[replace(bed.objects[0], id='b/c')] + bed.objects[1:]),
+        'kitchen': kitchen})
+    ids = [b.id for b in world_bodies(odd)]
+    assert len(set(ids)) == len(ids) == len(scene.objects())
+    model = mujoco.MjModel.from_xml_path(str(write(odd, 'mjcf', tmp_path / 'odd.xml')))
+    assert model.nbody == 1 + len(ids)

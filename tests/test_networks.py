@@ -359,6 +359,8 @@ def test_size_buckets_group_rooms_of_like_size_and_keep_each_rooms_chance():
         assert abs(seen[states > 8].sum() / seen.sum() - want[states > 8].sum()) < 0.02
     one = SizeBuckets([64] * 5 + [96] * 5, np.ones(10), least=30)
     assert len(one.groups) == 1
+    with pytest.raises(ValueError, match='train.size_buckets'):
+        SizeBuckets([64] * 5, np.ones(5), least=-3)
     # a last group too small joins the one before it; no room is left out
     tail = SizeBuckets([64] * 50 + [72] * 50 + [80] * 10, np.ones(110), least=40)
     assert [len(g.index) for g in tail.groups] == [50, 60]
@@ -372,6 +374,9 @@ def test_a_batch_of_size_buckets_holds_rooms_of_one_group(rooms):
     scenes = rooms[:6] + [big] * 6
     src = ExampleSource('bedroom', scenes, 64, 64, augment=False, size_buckets=6)
     plain = ExampleSource('bedroom', scenes, 64, 64, augment=False)
+    for module in ('category', 'location'):      # still a pure function of its seed
+        a, b = src.batch(module, [7, 1], 8), src.batch(module, [7, 1], 8)
+        assert all(torch.equal(a[k], b[k]) for k in a)
     assert len(src._buckets.groups) == 2
     sides = {src.batch('location', [s], 8)['image'].shape[-1] for s in range(30)}
     assert sides == {64, src._frame(big.room).resolution}

@@ -619,7 +619,7 @@ def test_a_house_on_room_layout_is_furnished_whole_with_its_map_and_rooms_named(
         assert list(house.scenes) == ['hall', 'bed', 'kitchen'] and all(
             s.objects for s in house.scenes.values())
         assert d['meta']['robot']['promise_kept']
-        assert {m.ns.split('/')[0] for m in markers.markers[1:]} == set(house.scenes)
+        assert {m.ns.split('/')[0] for m in markers.markers[1:]} == {*house.scenes, 'walls'}
         assert len(poses.poses) == len(house.objects())
         grid, want = client.latest('map'), occupancy_grid(house)
         data = np.frombuffer(bytes(grid.data), dtype=np.int8).reshape(want.data.shape)

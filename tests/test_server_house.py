@@ -47,8 +47,11 @@ def test_a_house_layout_is_furnished_whole_and_published_as_one_house_scene(serv
     assert status.objects == len(house.objects())
     assert 'a house of 3 rooms' in status.message
     markers = house_markers(house)
-    assert {m.ns.split('/')[0] for m in markers} == {'hall', 'bed', 'kitchen'}
+    assert {m.ns.split('/')[0] for m in markers} == {'hall', 'bed', 'kitchen', 'walls'}
     assert len({(m.ns, m.id) for m in markers}) == len(markers)
+    walls = [m for m in markers if m.ns == 'walls']
+    from scene_synth_ros.export.architecture import house_wall_boxes
+    assert [m.scale for m in walls] == [b.size for b in house_wall_boxes(house.house)]
 
 
 def test_requests_on_a_house_name_their_room_and_change_only_that_room(served):
@@ -121,3 +124,54 @@ def test_a_house_served_is_exported_as_one_world_in_each_format(tmp_path):
             parse_house_scene(served.json).to_dict()
     finally:
         srv.close()
+
+
+def test_a_room_generated_keeps_what_was_done_meanwhile_to_the_others(served):
+    import threading
+    srv, _ = served
+    assert srv.call('reset', room='bed').ok
+    done = {}
+    worker = threading.Thread(
+        target=lambda: done.update(answer=srv.call('generate', room='kitchen', seed=11)))
+    worker.start()
+    inserted = srv.call('next_object', room='bed', seed=2)
+    worker.join(120)
+    assert done['answer'].ok and inserted.ok
+    now = srv.scene
+    # served before the generate or during it: the bed's new object is there after it
+    assert [o.id for o in now.scenes['bed'].objects] == [inserted.objects[0].id]
+    assert now.scenes['kitchen'].objects
+
+
+def test_a_house_layout_is_refused_whole_for_one_room_that_cannot_hold_furniture():
+    rec = Recorder()
+    srv = SceneServer(ServerConfig(torch_threads=1, auto_generate=False), rec.publish,
+                      rec.status)
+    try:
+        bad = copy.deepcopy(HOUSE)
+        bad['rooms'].append({'id': 'slit', 'room_type': 'dining',
+                             'floor': [[6, 0], [6.3, 0], [6.3, 8], [6, 8]]})
+        bad['doors'].append({'rooms': ['hall', 'slit'], 'position': [6, 0.7], 'width': 0.6,
+                             'height': 2.0})
+        assert not srv.submit_layout(bad)
+        text = srv.status.last_error
+        assert "room 'slit'" in text and '\n' not in text and len(text) < 400, text
+        assert rec.served == []
+    finally:
+        srv.close()
+
+
+def test_a_house_layouts_request_id_marks_only_the_scene_that_answers_it(served):
+    srv, _ = served
+    layout = copy.deepcopy(HOUSE)
+    layout['request_id'] = 'house-42'
+    n = len(srv.rec.served)
+    assert srv.submit_layout(layout)
+    answer = json.loads(srv.rec.wait(n + 1).json)
+    assert answer['request_id'] == 'house-42' and answer['meta']['request_id'] == 'house-42'
+    assert srv.call('reset', room='hall').ok
+    later = json.loads(srv.rec.wait(n + 2).json)
+    assert 'request_id' not in later and 'request_id' not in later.get('meta', {})
+    assert srv.call('generate').ok
+    again = json.loads(srv.rec.served[-1].json)
+    assert 'request_id' not in again and 'request_id' not in again.get('meta', {})

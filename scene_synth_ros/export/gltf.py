@@ -19,6 +19,7 @@ from ..house import HouseScene
 from ..meshes import scene_mesh
 from ..scene import Scene
 from .architecture import FLOOR_RGBA, WALL_RGBA, architecture_of, room_meshes
+from .physics import body_id
 
 Z_UP_TO_Y_UP = np.array([[1, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0], [0, 0, 0, 1]], float)
 
@@ -30,7 +31,7 @@ def export_gltf(scene: Scene | HouseScene, path: str | Path, catalog: Catalog | 
     built = architecture_of(scene)
     if isinstance(scene, HouseScene):
         scene = Scene(next(iter(scene.scenes.values())).room,
-                      [replace(o, id=f'{rid}/{o.id}', support=None)
+                      [replace(o, id=body_id(rid, o.id), support=None)
                        for rid, o in scene.objects()])
     out = scene_mesh(scene, catalog)
     floors = {name for name, _ in built.floors}

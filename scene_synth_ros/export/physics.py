@@ -69,6 +69,7 @@ import numpy as np
 from shapely.geometry import LineString, Point, Polygon
 
 from ..catalog import Catalog, ModelVariant
+from ..files import safe_name
 from ..geometry import collisions, raised
 from ..house import HouseScene
 from ..meshes import build_parts, variant_for
@@ -471,13 +472,19 @@ def scene_bodies(scene: Scene, config: PhysicsConfig = DEFAULT_PHYSICS,
 def world_bodies(scene: Scene | HouseScene, config: PhysicsConfig = DEFAULT_PHYSICS,
                  catalog: Catalog | None = None) -> list[Body]:
     """``scene_bodies`` of a room, or of every room of a house, room by room, each body's
-    id (and its support's) then ``ROOM_ID/OBJECT_ID``: one world's names, whatever ids the
-    rooms share."""
+    id (and its support's) then ``body_id(ROOM_ID, OBJECT_ID)``: one world's names, whatever
+    ids the rooms share."""
     if not isinstance(scene, HouseScene):
         return scene_bodies(scene, config, catalog)
-    return [replace(b, id=f'{rid}/{b.id}', support=b.support and f'{rid}/{b.support}')
+    return [replace(b, id=body_id(rid, b.id), support=b.support and body_id(rid, b.support))
             for rid, room in scene.scenes.items()
             for b in scene_bodies(room, config, catalog)]
+
+
+def body_id(room_id: str, object_id: str) -> str:
+    """An object's name in the world of a house: ``ROOM/OBJECT``, the room's id as
+    ``files.safe_name`` writes it (no ``/`` then), so that no two objects share a name."""
+    return f'{safe_name(room_id)}/{object_id}'
 
 
 def quat_wxyz(yaw: float) -> tuple[float, float, float, float]:

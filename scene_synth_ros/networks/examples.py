@@ -110,6 +110,9 @@ class SizeBuckets:
     leaves each room's chance to be in a batch as it was (``pool``)."""
 
     def __init__(self, sides: list[int], states: np.ndarray, least: int):
+        if least < 1:
+            raise ValueError(f'size buckets of at least {least} rooms: give 1 or more '
+                             f'(train.size_buckets; 0 turns them off)')
         sides = np.asarray(sides)
         order = np.argsort(sides, kind='stable')
         groups: list[list[int]] = [[]]
