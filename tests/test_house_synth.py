@@ -122,6 +122,14 @@ def test_the_command_furnishes_a_house_layout_and_draws_it(cli, tmp_path):
     given = parse_house_scene(partial).scenes[rid].objects
     assert [o.to_dict() for o in bed.objects[:2]] == [o.to_dict() for o in given]
     assert len(bed.objects) > 2 and done.scenes['hall'].objects
+    # validate and render read a house too, every room of it
+    r = cli('validate', str(tmp_path / 'done.json'))
+    assert 'schema OK, a house of 3 rooms' in r.stdout and 'physically valid' in r.stdout
+    cli('render', str(tmp_path / 'done.json'), '--png', str(tmp_path / 'r.png'))
+    assert (tmp_path / 'r.png').read_bytes()[:4] == b'\x89PNG'
+    r = cli('render', str(tmp_path / 'done.json'), '--channels', str(tmp_path / 'r.npy'),
+            ok=False)
+    assert r.returncode == 2 and 'is a house' in r.stderr
     # A house where one room is expected says so in one line.
     r = cli('suggest', str(layout), ok=False)
     assert r.returncode == 2 and 'house layout' in r.stderr and r.stderr.count('\n') == 1, \

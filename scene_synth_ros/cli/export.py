@@ -41,7 +41,7 @@ def add_parser(sub) -> None:
     c.set_defaults(func=cmd_export)
 
     c = sub.add_parser('render', help='draw a scene JSON as a top-down picture')
-    c.add_argument('scene', help='a scene or room layout JSON')
+    c.add_argument('scene', help='a scene or room layout JSON (or a house layout or scene)')
     c.add_argument('--png', help='picture for people (matplotlib)')
     c.add_argument('--channels', help="the network input image as a .npy (C x N x N)")
     c.add_argument('--resolution', type=int, default=64, help='pixels a side of the '
@@ -51,7 +51,8 @@ def add_parser(sub) -> None:
     c.set_defaults(func=cmd_render)
 
     c = sub.add_parser('validate', help='check scene JSON files: schema and physics')
-    c.add_argument('files', nargs='+', help='scene or room layout JSON files')
+    c.add_argument('files', nargs='+', help='scene or room layout JSON files (or a house '
+                   "layout or scene: every room's)")
     data_set_option(c)
     c.set_defaults(func=cmd_validate)
 
@@ -106,9 +107,19 @@ def cmd_export(args) -> int:
 
 
 def cmd_render(args) -> int:
-    scene = load_scene_file(args.scene, vocabulary=args.vocabulary)
+    from ..house import HouseScene
+    scene = load_layout_file(args.scene, vocabulary=args.vocabulary)
     if not (args.png or args.channels):
         raise UserError('render needs --png and/or --channels to know what to write')
+    if isinstance(scene, HouseScene):
+        if args.channels:
+            raise UserError(f'{args.scene} is a house: the networks see one room at a time, '
+                            f'so --channels needs a room')
+        from ..plot import save_house_png
+        save_house_png(scene, args.png, title=args.title or Path(args.scene).stem,
+                       vocabulary=args.vocabulary)
+        print(f'wrote {args.png}')
+        return 0
     if args.png:
         from ..plot import save_png
         save_png(scene, args.png, title=args.title or Path(args.scene).stem,
@@ -132,8 +143,17 @@ def cmd_render(args) -> int:
 def cmd_validate(args) -> int:
     from ..allowance import of_scene
     from ..geometry import check_scene
+    from ..house import HouseScene
     for path in args.files:
-        scene = load_scene_file(path, vocabulary=args.vocabulary)
+        scene = load_layout_file(path, vocabulary=args.vocabulary)
+        if isinstance(scene, HouseScene):       # every room, checked as a room alone
+            rooms = [(rid, check_scene(s, of_scene(scene.meta)))
+                     for rid, s in scene.scenes.items()]
+            bad = [f'{rid}: {r.summary()}' for rid, r in rooms if not r.ok]
+            print(f'{path}: schema OK, a house of {len(rooms)} rooms, '
+                  f'{len(scene.objects())} objects, physically '
+                  + ('; '.join(bad) if bad else rooms[0][1].summary()))
+            continue
         report = check_scene(scene, of_scene(scene.meta))
         print(f'{path}: schema OK, {len(scene)} objects, physically {report.summary()}')
     return 0
