@@ -721,8 +721,7 @@ class SceneServer:
             self._cancelled(job)
             return
         except SceneSynthError as e:
-            self._reject(f'{job.source or job.kind}: {e}')
-            job.message = str(e)
+            self._refused(job, e)
             return
         served = Served(result.scene, job.source or job.kind, seed, result.added,
                         result.seconds, result.stopped, result.timings, robot=result.robot,
@@ -748,6 +747,11 @@ class SceneServer:
         seed = job.used_seed = self._take_seed() if job.seed is None else job.seed
         self._set_status(busy=True)
         return seed
+
+    def _refused(self, job: _Job, error: SceneSynthError) -> None:
+        """``job``'s synthesis refused its input: said on the status and in the answer."""
+        self._reject(f'{job.source or job.kind}: {error}')
+        job.message = str(error)
 
     def _cancelled(self, job: _Job) -> None:
         if job.cancelled is not None and job.cancelled():
@@ -839,8 +843,7 @@ class SceneServer:
             self._cancelled(job)
             return
         except SceneSynthError as e:
-            self._reject(f'{job.source or job.kind}: {e}')
-            job.message = str(e)
+            self._refused(job, e)
             return
         if self._commit(job, served):
             job.ok, job.objects = True, served.added

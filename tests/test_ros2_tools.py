@@ -176,43 +176,41 @@ def test_the_node_guide_commands_with_the_real_tools(launched):
     assert outputs[-1].strip() == 'Integer value is: 43'
 
 
-def test_the_node_guide_house_commands_with_the_real_tools(launched):
-    """docs/node.md's house: its layout published with `ros2 topic pub`, its map echoed."""
+def _house_through_the_node(pub: str, echo_map: str, env: dict, room: str, timeout: float):
+    """Run ``pub`` (a house layout published with `ros2 topic pub`), wait for the node's
+    scene to be the house (``room`` one of its room ids), check ``echo_map`` (`ros2 topic
+    echo` of the map's info) against that house's map; the house."""
     from scene_synth_ros.occupancy import occupancy_grid
     from scene_synth_ros.schema import parse_house_scene
-    pub, echo_map = _documented('docs/node.md', '## Houses')
     assert pub.startswith('ros2 topic pub') and echo_map.startswith('ros2 topic echo')
-    _sh(pub, launched.env)
-    deadline = time.monotonic() + 60
-    while '"rooms"' not in (text := _sh(ECHO_SCENE, launched.env).rsplit('---', 1)[0]):
+    _sh(pub, env)
+    deadline = time.monotonic() + timeout
+    while f'"{room}"' not in (text := _sh(ECHO_SCENE, env).rsplit('---', 1)[0]):
         assert time.monotonic() < deadline, text[-400:]
         time.sleep(0.5)
     house = parse_house_scene(text)
-    assert list(house.scenes) == ['hall', 'bed'] and house.objects()
-    info = _sh(echo_map, launched.env)
     want = occupancy_grid(house)
+    info = _sh(echo_map, env)
     assert f'width: {want.width}' in info and f'height: {want.height}' in info, info
+    return house
+
+
+def test_the_node_guide_house_commands_with_the_real_tools(launched):
+    """docs/node.md's house: its layout published with `ros2 topic pub`, its map echoed."""
+    pub, echo_map = _documented('docs/node.md', '## Houses')
+    house = _house_through_the_node(pub, echo_map, launched.env, 'bed', 60)
+    assert list(house.scenes) == ['hall', 'bed'] and house.objects()
 
 
 def test_the_readme_apartment_through_the_node_with_the_real_tools(launched):
     """README's "A whole home": the apartment's layout file published with `ros2 topic pub`,
     the whole home's map echoed."""
-    from scene_synth_ros.occupancy import occupancy_grid
-    from scene_synth_ros.schema import parse_house_scene
     section = (ROOT / 'README.md').read_text().split('## A whole home\n', 1)[1]
     pub, echo_map = [c for c in section.split('\n## ', 1)[0].splitlines()
                      if c.startswith('ros2 ')]
     assert 'apartment_layout.json' in pub and '/map' in echo_map
-    _sh(pub, launched.env)
-    deadline = time.monotonic() + 90
-    while '"bathroom"' not in (text := _sh(ECHO_SCENE, launched.env).rsplit('---', 1)[0]):
-        assert time.monotonic() < deadline, text[-400:]
-        time.sleep(0.5)
-    house = parse_house_scene(text)
+    house = _house_through_the_node(pub, echo_map, launched.env, 'bathroom', 90)
     assert len(house.scenes) == 6 and all(s.objects for s in house.scenes.values())
-    want = occupancy_grid(house)
-    info = _sh(echo_map, launched.env)
-    assert f'width: {want.width}' in info and f'height: {want.height}' in info, info
 
 
 def test_a_layout_latched_before_the_node_starts_is_furnished(tmp_path):

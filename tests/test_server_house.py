@@ -2,31 +2,39 @@
 as a room's, every room furnished at once, requests that name the room they act on."""
 from __future__ import annotations
 
+from contextlib import contextmanager
 import copy
 import json
 import time
 
 import pytest
 from test_house import HOUSE
-from test_server import LAYOUT, Recorder
+from test_server import LAYOUT, Recorder, _user_server
 
 from scene_synth_ros.geometry import check_scene
 from scene_synth_ros.house import HouseScene
 from scene_synth_ros.markers import house_markers
 from scene_synth_ros.schema import parse_house_scene
-from scene_synth_ros.server import OK, SceneServer, ServerConfig
+from scene_synth_ros.server import OK
+
+
+@contextmanager
+def serving(**config):
+    """(server, its Recorder), closed after."""
+    rec = Recorder()
+    srv = _user_server(rec, **config)
+    srv.rec = rec
+    try:
+        yield srv, rec
+    finally:
+        srv.close()
 
 
 @pytest.fixture(scope='module')
 def served():
-    rec = Recorder()
-    srv = SceneServer(ServerConfig(torch_threads=1), rec.publish, rec.status, rec.log,
-                      rec.seed)
-    srv.rec = rec
-    assert srv.submit_layout(json.dumps(HOUSE))
-    first = rec.wait(1)
-    yield srv, first
-    srv.close()
+    with serving() as (srv, rec):
+        assert srv.submit_layout(json.dumps(HOUSE))
+        yield srv, rec.wait(1)
 
 
 def test_a_house_layout_is_furnished_whole_and_published_as_one_house_scene(served):
@@ -84,10 +92,7 @@ def test_requests_on_a_house_name_their_room_and_change_only_that_room(served):
 
 
 def test_a_house_gives_way_to_a_room_and_a_room_refuses_room_ids():
-    rec = Recorder()
-    srv = SceneServer(ServerConfig(torch_threads=1, auto_generate=False), rec.publish,
-                      rec.status)
-    try:
+    with serving(auto_generate=False) as (srv, rec):
         house = copy.deepcopy(HOUSE)
         assert srv.submit_layout(house)
         given = rec.wait(1)
@@ -102,15 +107,10 @@ def test_a_house_gives_way_to_a_room_and_a_room_refuses_room_ids():
         bad['doors'][0]['rooms'] = ['hall', 'nowhere']
         assert not srv.submit_layout(bad)
         assert 'nowhere' in srv.status.last_error and len(srv.status.last_error) < 400
-    finally:
-        srv.close()
 
 
 def test_a_house_served_is_exported_as_one_world_in_each_format(tmp_path):
-    rec = Recorder()
-    srv = SceneServer(ServerConfig(torch_threads=1, export_dir=str(tmp_path),
-                                   export_formats='sdf,mjcf'), rec.publish, rec.status)
-    try:
+    with serving(export_dir=str(tmp_path), export_formats='sdf,mjcf') as (srv, rec):
         assert srv.submit_layout(json.dumps(HOUSE))
         served = rec.wait(1)
         deadline = time.monotonic() + 30       # written just after it is published
@@ -122,8 +122,6 @@ def test_a_house_served_is_exported_as_one_world_in_each_format(tmp_path):
             'house_00001_labels.json']
         assert parse_house_scene((tmp_path / 'house_00001.json').read_text()).to_dict() == \
             parse_house_scene(served.json).to_dict()
-    finally:
-        srv.close()
 
 
 def test_a_room_generated_keeps_what_was_done_meanwhile_to_the_others(served):
@@ -144,10 +142,7 @@ def test_a_room_generated_keeps_what_was_done_meanwhile_to_the_others(served):
 
 
 def test_a_house_layout_is_refused_whole_for_one_room_that_cannot_hold_furniture():
-    rec = Recorder()
-    srv = SceneServer(ServerConfig(torch_threads=1, auto_generate=False), rec.publish,
-                      rec.status)
-    try:
+    with serving(auto_generate=False) as (srv, rec):
         bad = copy.deepcopy(HOUSE)
         bad['rooms'].append({'id': 'slit', 'room_type': 'dining',
                              'floor': [[6, 0], [6.3, 0], [6.3, 8], [6, 8]]})
@@ -157,8 +152,6 @@ def test_a_house_layout_is_refused_whole_for_one_room_that_cannot_hold_furniture
         text = srv.status.last_error
         assert "room 'slit'" in text and '\n' not in text and len(text) < 400, text
         assert rec.served == []
-    finally:
-        srv.close()
 
 
 def test_a_house_layouts_request_id_marks_only_the_scene_that_answers_it(served):
