@@ -803,7 +803,15 @@ def load_layout(path: str | os.PathLike, catalog: catalog.Catalog | None = None,
                 vocabulary: Vocabulary = PAPER) -> Scene | HouseScene:
     """Read a layout or scene file: a house (a top level with ``"rooms"``: a house layout,
     or a house scene with its objects) as a HouseScene, else as ``load_scene`` reads it."""
-    d = _load(Path(path).read_text(encoding='utf-8'), yaml_ok=True)
+    return parse_document(Path(path).read_text(encoding='utf-8'), catalog, vocabulary)
+
+
+def parse_document(text_or_dict: Any, catalog: catalog.Catalog | None = None,
+                   vocabulary: Vocabulary = PAPER) -> Scene | HouseScene:
+    """A layout or scene (JSON or YAML text, bytes or dict), whichever it is: a house layout
+    or house scene (``is_house``) as a HouseScene, a room layout as ``parse_room_layout``
+    reads it, a scene as ``parse_scene`` does."""
+    d = _load(text_or_dict, yaml_ok=True)
     if is_house(d):
         return _house_scene_from_dict(d, catalog, vocabulary)
     if isinstance(d, dict) and 'room' not in d:

@@ -35,7 +35,7 @@ from typing import Iterator
 from ..categories import PAPER, Vocabulary
 from ..errors import SceneSynthError
 from ..limits import MAX_PAYLOAD_BYTES
-from ..schema import is_house, parse_layout, parse_room_layout, parse_scene, read_payload
+from ..schema import parse_document
 
 LAYOUT_SUFFIXES = ('.json', '.yaml', '.yml')
 
@@ -190,9 +190,4 @@ def scene_from_document(data: bytes, models=None, vocabulary: Vocabulary = PAPER
     """A scene or room layout (JSON or YAML) as a validated Scene, as ``schema.load_scene``
     reads a file, or a house layout or house scene as a HouseScene; model ids are those of
     ``models`` (a ``catalog.Catalog``, default the procedural one)."""
-    d = read_payload(data)
-    if is_house(d):
-        return parse_layout(d, models, vocabulary)
-    if isinstance(d, dict) and 'room' not in d:
-        return parse_room_layout(d, models, vocabulary)
-    return parse_scene(d, models, vocabulary)
+    return parse_document(data, models, vocabulary)
