@@ -258,14 +258,15 @@ class Worker:
         shared, own = {}, {}
         with tempfile.TemporaryDirectory(prefix='scene-synth-batch-') as tmp:
             root = Path(tmp)
-            if self.spec.png and isinstance(scene, HouseScene):
+            if self.spec.png:
                 (root / THUMBNAILS).mkdir()
-                save_house_png(scene, root / THUMBNAILS / f'{name}.png', title=name,
-                               vocabulary=self.synth.vocabulary, dpi=THUMBNAIL['dpi'])
-            elif self.spec.png:
-                (root / THUMBNAILS).mkdir()
-                save_png(scene, root / THUMBNAILS / f'{name}.png', title=name,
-                         vocabulary=self.synth.vocabulary, **THUMBNAIL)
+                png = root / THUMBNAILS / f'{name}.png'
+                if isinstance(scene, HouseScene):
+                    save_house_png(scene, png, title=name, vocabulary=self.synth.vocabulary,
+                                   dpi=THUMBNAIL['dpi'])
+                else:
+                    save_png(scene, png, title=name, vocabulary=self.synth.vocabulary,
+                             **THUMBNAIL)
             for fmt in self.spec.exports:
                 export.write(scene, fmt, root / fmt / f'{name}{export.FORMATS[fmt].suffix}',
                              root / fmt / MESHES, catalog=models)
