@@ -22,15 +22,23 @@ from .scene import Opening, PlacedObject, Room, Scene, Wall
 from .thresholds import MAX_WALL_THICKNESS, OPENING_TOLERANCE
 
 
+def back_to_back(wall: Wall, other: Wall, slack: float = 0.0) -> float | None:
+    """How far behind ``wall`` the wall ``other`` stands, facing it (within 1 degree) at
+    most ``MAX_WALL_THICKNESS`` (plus ``slack``) away, as two rooms' walls do on either
+    side of one wall; None where it does not."""
+    if float(np.dot(other.direction, wall.direction)) > -0.9998:
+        return None
+    depth = float(np.dot(np.subtract(other.start, wall.start), -wall.normal))
+    return depth if -OPENING_TOLERANCE <= depth <= MAX_WALL_THICKNESS + slack else None
+
+
 def across(room: Room, opening: Opening, wall: Wall) -> Opening | None:
     """``opening``, which lies on ``wall`` of another room, as it opens into ``room``: on a
     wall of ``room`` back to back with ``wall`` at most ``MAX_WALL_THICKNESS`` behind it,
     moved onto it (None: ``room`` has no such wall under the whole opening)."""
     for other in room.walls:
-        if float(np.dot(other.direction, wall.direction)) > -0.9998:     # within 1 degree
-            continue
-        depth = float(np.dot(np.subtract(other.start, wall.start), -wall.normal))
-        if not -OPENING_TOLERANCE <= depth <= MAX_WALL_THICKNESS:
+        depth = back_to_back(wall, other)
+        if depth is None:
             continue
         x, y = np.asarray(opening.position) - wall.normal * depth
         moved = Opening(opening.kind, (float(x), float(y)), opening.width, opening.height,

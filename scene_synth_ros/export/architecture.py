@@ -18,9 +18,9 @@ import shapely
 if TYPE_CHECKING:
     import trimesh
 
-from ..house import House, HouseScene
+from ..house import House, HouseScene, back_to_back
 from ..scene import Room, Scene
-from ..thresholds import MAX_WALL_THICKNESS, OPENING_TOLERANCE
+from ..thresholds import OPENING_TOLERANCE
 
 WALL_THICKNESS = 0.10     # metres, outside the floor outline
 # The thinnest wall between two rooms (metres): two floors that meet on one line still get a
@@ -83,15 +83,13 @@ def wall_boxes(room: Room, thickness: float = WALL_THICKNESS) -> list[WallBox]:
 
 
 def _shared(wall, others: list[tuple[int, Room]]) -> list[tuple[float, float, int, float]]:
-    """Where another room stands behind ``wall``, back to back with it at most
-    ``MAX_WALL_THICKNESS`` away: (start offset, end offset, that room's index, the gap)."""
+    """Where another room stands behind ``wall``, back to back with it
+    (``house.back_to_back``): (start offset, end offset, that room's index, the gap)."""
     out = []
     for j, other in others:
         for w in other.walls:
-            if float(np.dot(w.direction, wall.direction)) > -0.9998:     # within 1 degree
-                continue
-            gap = float(np.dot(np.subtract(w.start, wall.start), -wall.normal))
-            if not -OPENING_TOLERANCE <= gap <= MAX_WALL_THICKNESS + OPENING_TOLERANCE:
+            gap = back_to_back(wall, w, slack=OPENING_TOLERANCE)
+            if gap is None:
                 continue
             a, b = sorted((wall.offset_of(w.start), wall.offset_of(w.end)))
             a, b = max(a, 0.0), min(b, wall.length)
