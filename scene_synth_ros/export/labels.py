@@ -13,7 +13,7 @@ import zlib
 
 from ..categories import CATEGORIES
 
-ARCHITECTURE = ('floor', 'wall')
+FLOOR, WALL = ARCHITECTURE = ('floor', 'wall')
 _KNOWN = {name: k + 1 for k, name in enumerate(ARCHITECTURE + tuple(CATEGORIES))}
 _FIRST_FREE = len(_KNOWN) + 1
 

@@ -27,7 +27,7 @@ from ..files import safe_name, write_atomic
 from ..house import HouseScene
 from ..scene import Scene
 from .architecture import FLOOR_RGBA, FLOOR_THICKNESS, WALL_RGBA, architecture_of, floor_box
-from .labels import label_table, semantic_label
+from .labels import FLOOR, WALL, label_table, semantic_label
 from .meshfiles import MeshFolder
 from .physics import DEFAULT_PHYSICS, Body, PhysicsConfig, world_bodies
 
@@ -89,7 +89,7 @@ def _architecture(parent, scene: Scene | HouseScene) -> None:
         colour = _sub(visual, 'material')
         _sub(colour, 'diffuse', _numbers(FLOOR_RGBA))
         _sub(colour, 'ambient', _numbers(FLOOR_RGBA))
-        _label(model, 'floor')
+        _label(model, FLOOR)
     for box in built.walls:
         model = _sub(parent, 'model', name=box.name)
         _sub(model, 'static', 'true')
@@ -102,7 +102,7 @@ def _architecture(parent, scene: Scene | HouseScene) -> None:
                 colour = _sub(element, 'material')
                 _sub(colour, 'diffuse', _numbers(WALL_RGBA))
                 _sub(colour, 'ambient', _numbers(WALL_RGBA))
-        _label(model, 'wall')
+        _label(model, WALL)
 
 
 def _inertial(link, body: Body) -> None:

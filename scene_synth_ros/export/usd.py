@@ -31,6 +31,7 @@ from ..catalog import Catalog
 from ..house import HouseScene
 from ..scene import Scene
 from .architecture import FLOOR_RGBA, WALL_RGBA, Architecture, architecture_of, floor_slab
+from .labels import FLOOR, WALL
 from .meshfiles import MeshFolder
 from .physics import DEFAULT_PHYSICS, GRAVITY, Body, PhysicsConfig, world_bodies
 from .usd_prims import identifier, mesh, surface
@@ -80,12 +81,12 @@ def _room(stage, built: Architecture, physics_material) -> None:
         UsdPhysics.MeshCollisionAPI.Apply(floor.GetPrim()).CreateApproximationAttr('none')
         UsdShade.MaterialBindingAPI(floor.GetPrim()).Bind(
             physics_material, UsdShade.Tokens.weakerThanDescendants, 'physics')
-        label(floor.GetPrim(), 'floor')
+        label(floor.GetPrim(), FLOOR)
     for box in built.walls:
         cube = _collider(stage, f'/World/Room/{box.name}', box.centre, box.yaw, box.size,
                          physics_material)
         UsdShade.MaterialBindingAPI(cube.GetPrim()).Bind(wall_look)
-        label(cube.GetPrim(), 'wall')
+        label(cube.GetPrim(), WALL)
 
 
 def _object(stage, path: str, body: Body, model_file: str, fixed: bool,
